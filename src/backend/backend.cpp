@@ -1,0 +1,37 @@
+#define GS_CUDA_HOST_CODE
+#include "backend/backend.hpp"
+
+#include <stdexcept>
+
+#include "backend/check.hpp"
+
+namespace gs {
+
+Backend parse_backend(const std::string& name) {
+  if (name == "cpu") return Backend::cpu;
+  if (name == "cuda") return Backend::cuda;
+  throw std::invalid_argument("unknown backend '" + name + "' (expected cpu or cuda)");
+}
+
+const char* backend_name(Backend b) { return b == Backend::cpu ? "cpu" : "cuda"; }
+
+bool cuda_backend_built() {
+#ifdef GS_HAVE_CUDA
+  return true;
+#else
+  return false;
+#endif
+}
+
+bool cuda_device_available() {
+#ifdef GS_HAVE_CUDA
+  int count = 0;
+  return cudaGetDeviceCount(&count) == cudaSuccess && count > 0;
+#else
+  return false;
+#endif
+}
+
+Backend default_backend() { return cuda_device_available() ? Backend::cuda : Backend::cpu; }
+
+}  // namespace gs

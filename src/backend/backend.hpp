@@ -1,0 +1,15 @@
+#pragma once
+#include <string>
+
+namespace gs {
+
+// Where kernels run and memory lives.
+enum class Backend { cpu, cuda };
+
+Backend parse_backend(const std::string& name);  // "cpu" | "cuda"; throws on anything else
+const char* backend_name(Backend b);
+bool cuda_backend_built();     // compiled with the CUDA backend
+bool cuda_device_available();  // built with CUDA and a device is present
+Backend default_backend();     // cuda when a device is available, else cpu
+
+}  // namespace gs

@@ -1,0 +1,42 @@
+#pragma once
+// CUDA execution policy: one thread per particle, CUB radix sort for keys.
+#include <cub/device/device_radix_sort.cuh>
+
+#include "backend/check.hpp"
+#include "neighbor/cell_list.hpp"
+
+namespace gs {
+
+template <class F>
+__global__ void for_each_kernel(Index n, F f) {
+  const Index i = Index(blockIdx.x) * Index(blockDim.x) + Index(threadIdx.x);
+  if (i < n) f(i);
+}
+
+struct CudaExec {
+  static constexpr Backend backend = Backend::cuda;
+  static constexpr int kBlock = 128;
+
+  template <class F>
+  static void parallel_for(Index n, const F& f) {
+    if (n <= 0) return;
+    for_each_kernel<<<unsigned((n + kBlock - 1) / kBlock), kBlock>>>(n, f);
+    GS_CUDA_CHECK(cudaGetLastError());
+  }
+
+  static void sort_pairs(CellList& c, Index n) {
+    cub::DoubleBuffer<std::uint64_t> keys(c.keys.data(), c.keys_alt.data());
+    cub::DoubleBuffer<Index> values(c.sorted.data(), c.sorted_alt.data());
+    std::size_t scratch_bytes = 0;
+    GS_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, scratch_bytes, keys, values, n, 0, c.key_bits));
+    c.sort_scratch.resize(scratch_bytes);
+    GS_CUDA_CHECK(
+        cub::DeviceRadixSort::SortPairs(c.sort_scratch.data(), scratch_bytes, keys, values, n, 0, c.key_bits));
+    if (keys.Current() != c.keys.data()) c.keys.swap(c.keys_alt);
+    if (values.Current() != c.sorted.data()) c.sorted.swap(c.sorted_alt);
+  }
+
+  static void synchronize() { GS_CUDA_CHECK(cudaDeviceSynchronize()); }
+};
+
+}  // namespace gs

@@ -1,0 +1,73 @@
+#pragma once
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "backend/memory.hpp"
+
+namespace gs {
+
+// An array in a backend's memory. Owns its storage; moves, never copies.
+// Capacity only grows, so buffers reused every step are allocated once.
+template <class T>
+class DeviceArray {
+ public:
+  DeviceArray() = default;
+  explicit DeviceArray(Backend b, std::size_t n = 0) : backend_(b) { resize(n); }
+  ~DeviceArray() { release(); }
+  DeviceArray(const DeviceArray&) = delete;
+  DeviceArray& operator=(const DeviceArray&) = delete;
+  DeviceArray(DeviceArray&& o) noexcept { swap(o); }
+  DeviceArray& operator=(DeviceArray&& o) noexcept { swap(o); return *this; }
+
+  void swap(DeviceArray& o) noexcept {
+    std::swap(backend_, o.backend_);
+    std::swap(data_, o.data_);
+    std::swap(size_, o.size_);
+    std::swap(capacity_, o.capacity_);
+  }
+
+  // Grows keeping the first size() elements.
+  void resize(std::size_t n) {
+    if (n > capacity_) {
+      std::size_t new_capacity = capacity_ + capacity_ / 4;
+      if (new_capacity < n) new_capacity = n;
+      T* fresh = static_cast<T*>(backend_alloc(backend_, new_capacity * sizeof(T)));
+      if (size_ > 0) backend_copy(backend_, fresh, data_, size_ * sizeof(T));
+      release();
+      data_ = fresh;
+      capacity_ = new_capacity;
+    }
+    size_ = n;
+  }
+  void zero() { if (size_ > 0) backend_zero(backend_, data_, size_ * sizeof(T)); }
+
+  std::vector<T> to_host() const {
+    std::vector<T> h(size_);
+    if (size_ > 0) backend_copy_to_host(backend_, h.data(), data_, size_ * sizeof(T));
+    return h;
+  }
+  void from_host(const std::vector<T>& h) {
+    resize(h.size());
+    if (!h.empty()) backend_copy_from_host(backend_, data_, h.data(), h.size() * sizeof(T));
+  }
+
+  T* data() { return data_; }
+  const T* data() const { return data_; }
+  std::size_t size() const { return size_; }
+  std::size_t bytes() const { return capacity_ * sizeof(T); }
+  Backend backend() const { return backend_; }
+
+ private:
+  void release() noexcept {
+    if (data_) backend_free(backend_, data_);
+    data_ = nullptr;
+    capacity_ = 0;
+  }
+  Backend backend_ = Backend::cpu;
+  T* data_ = nullptr;
+  std::size_t size_ = 0;
+  std::size_t capacity_ = 0;
+};
+
+}  // namespace gs

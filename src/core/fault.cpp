@@ -1,0 +1,17 @@
+#include "core/fault.hpp"
+
+namespace gs {
+
+const char* fault_cause(int code) {
+  switch (code) {
+    case kFaultNone: return "no fault";
+    case kFaultLeftDomain: return "the particle left the domain";
+    case kFaultTooFast: return "the particle moved more than half a cell in one step (time step too large or "
+                               "unstable contact)";
+    case kFaultNotFinite: return "position or velocity became NaN or Inf (numerical instability)";
+    case kFaultSlotsExhausted: return "more simultaneous contacts than contact_slots (raise contact_slots)";
+    default: return "unknown fault";
+  }
+}
+
+}  // namespace gs

@@ -1,0 +1,55 @@
+#pragma once
+// All particle state of one rank as a structure of arrays in backend memory.
+// Precision per field (docs/PRECISION.md says why):
+//   position, velocity, angular velocity: fp64, so a 1e5 m domain keeps
+//     sub-micrometre resolution and long runs do not drift;
+//   radius, mass, moment of inertia: fp32 (material constants of a particle);
+//   orientation quaternion: fp32, renormalised every step (visualisation only);
+//   force, torque, contact springs: the force precision, fp32 or fp64.
+// Owned particles occupy [0, n_owned); ghost copies of neighbours' particles
+// follow in [n_owned, n_owned + n_ghost).
+#include <cstdint>
+
+#include "backend/device_array.hpp"
+#include "core/types.hpp"
+#include "core/vec3.hpp"
+
+namespace gs {
+
+struct Quaternion {
+  float w, x, y, z;
+};
+
+template <class Real>
+struct ForceArrays {
+  DeviceArray<Vec3<Real>> force;   // contact force [N]
+  DeviceArray<Vec3<Real>> torque;  // contact torque [N m]
+};
+
+// Spring history, slot-major: entry (slot s, particle i) at s * stride + i so
+// that neighbouring threads touch neighbouring words.
+template <class Real>
+struct ContactHistory {
+  int slots = 0;
+  std::size_t stride = 0;
+  DeviceArray<ParticleId> partner;        // kNoPartner marks a free slot
+  DeviceArray<Vec3<Real>> tangential;     // empty unless friction is on
+  DeviceArray<Vec3<Real>> rolling;        // empty unless rolling resistance is on
+};
+
+struct ParticleStore {
+  Backend backend = Backend::cpu;
+  Index n_owned = 0;
+  Index n_ghost = 0;
+
+  DeviceArray<ParticleId> id;
+  DeviceArray<std::uint8_t> material;
+  DeviceArray<std::uint8_t> marker;
+  DeviceArray<float> radius, mass, inertia;
+  DeviceArray<Vec3d> position, velocity, angular_velocity;
+  DeviceArray<Quaternion> orientation;
+
+  Index size() const { return n_owned + n_ghost; }
+};
+
+}  // namespace gs

@@ -1,0 +1,32 @@
+#pragma once
+#include <cstdint>
+
+namespace gs {
+
+// Global particle id, unique across ranks and stable for a particle's life.
+// 32 bits keep the per-step sort key (cell, id) in one 64-bit word; the top
+// 256 values are reserved for wall partners in the contact history.
+using ParticleId = std::uint32_t;
+// Local (per-rank) particle index.
+using Index = std::int32_t;
+
+constexpr ParticleId kNoPartner = 0xFFFFFFFFu;
+constexpr ParticleId kWallPartnerBase = 0xFFFFFF00u;  // wall w is partner kWallPartnerBase + w
+constexpr ParticleId kMaxParticleId = kWallPartnerBase - 1;
+constexpr int kMaxWalls = 255;
+constexpr int kMaxContactSlots = 32;  // one bit per slot in a 32-bit mask
+
+// Effects a scene can switch on; the step kernels are compiled once per set.
+enum Effect : unsigned {
+  kFriction = 1u,          // tangential spring with history and Coulomb cap
+  kRollingResistance = 2u, // rolling spring with history and cap
+  kCohesion = 4u,          // attractive normal force while in contact
+};
+constexpr unsigned kAllEffects = kFriction | kRollingResistance | kCohesion;
+
+enum class ContactModel { linear, hertz_mindlin };
+enum class Precision { fp32, fp64 };  // precision of force arithmetic
+
+inline bool uses_history(unsigned effects) { return (effects & (kFriction | kRollingResistance)) != 0; }
+
+}  // namespace gs

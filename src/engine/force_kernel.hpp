@@ -1,0 +1,127 @@
+#pragma once
+// Contact forces, one thread per owned particle (as the seed). Each thread
+// visits the 27 cells around its particle in a fixed order, and inside a cell
+// the partners in ascending global id (the cell list is sorted by (cell, id)),
+// then the walls in scene order: the sum of a particle's contact forces is
+// therefore taken in one canonical order, independent of thread scheduling
+// and of how particles are split across ranks.
+#include "contact/contact_slots.hpp"
+#include "core/materials.hpp"
+#include "neighbor/cell_grid.hpp"
+#include "walls/wall_geometry.hpp"
+
+namespace gs {
+
+template <class Real, ContactModel Model, unsigned Effects>
+struct ForceKernel {
+  // Particles (owned and ghosts)
+  const ParticleId* id;
+  const std::uint8_t* material;
+  const float* radius;
+  const float* mass;
+  const Vec3d* position;
+  const Vec3d* velocity;
+  const Vec3d* angular_velocity;
+  // Cell list
+  CellGrid grid;
+  const Index* sorted;      // particle indices in (cell, id) order
+  const Index* cell_begin;  // per cell, range in `sorted`
+  const Index* cell_end;
+  // Interactions
+  PairTable<Real> pairs;
+  const Wall* walls;
+  int n_walls;
+  SlotTable<Real, Effects> history;
+  // Outputs
+  Vec3<Real>* force;
+  Vec3<Real>* torque;  // null when no effect makes torques
+  Real dt;
+  Fault* fault;
+  long long step;
+
+  static constexpr bool kTorque = (Effects & (kFriction | kRollingResistance)) != 0;
+
+  GS_HD void operator()(Index i) const {
+    ContactLoad<Real> total;
+    unsigned touched = 0;
+    const Vec3d xi = position[i];
+    const CellCoord c = grid.coord(xi);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const CellCoord n{c.x + dx, c.y + dy, c.z + dz};
+          if (!grid.inside(n)) continue;
+          const std::int64_t cell = grid.linear(n);
+          for (Index k = cell_begin[cell]; k < cell_end[cell]; ++k) {
+            const Index j = sorted[k];
+            if (j != i) add_particle_contact(i, j, xi, total, touched);
+          }
+        }
+    for (int w = 0; w < n_walls; ++w) add_wall_contact(i, w, xi, total, touched);
+    if constexpr (SlotTable<Real, Effects>::kActive) history.release_untouched(i, touched);
+    force[i] = total.force;
+    if constexpr (kTorque) torque[i] = total.torque;
+  }
+
+ private:
+  GS_HD void add_particle_contact(Index i, Index j, const Vec3d& xi, ContactLoad<Real>& total,
+                                  unsigned& touched) const {
+    const Vec3d d = xi - position[j];
+    const double reach = double(radius[i]) + double(radius[j]);
+    const double distance2 = norm2(d);
+    if (distance2 >= reach * reach) return;
+    const double distance = std::sqrt(distance2);
+    ContactKinematics<Real> k;
+    k.overlap = Real(reach - distance);
+    k.normal = Vec3<Real>(d * (1.0 / distance));
+    const Real ri = radius[i], rj = radius[j];
+    const Real lever_i = ri - Real(0.5) * k.overlap, lever_j = rj - Real(0.5) * k.overlap;
+    const Vec3<Real> wi(angular_velocity[i]), wj(angular_velocity[j]);
+    k.velocity = Vec3<Real>(velocity[i] - velocity[j]) - cross(wi * lever_i + wj * lever_j, k.normal);
+    k.angular_velocity = wi - wj;
+    const Real mi = mass[i], mj = mass[j];
+    k.effective_mass = mi * mj / (mi + mj);
+    k.effective_radius = ri * rj / (ri + rj);
+    k.lever = lever_i;
+    apply(i, id[j], pairs(material[i], material[j]), k, total, touched);
+  }
+
+  GS_HD void add_wall_contact(Index i, int w, const Vec3d& xi, ContactLoad<Real>& total, unsigned& touched) const {
+    WallContact wc;
+    if (!wall_contact(walls[w], xi, double(radius[i]), wc)) return;
+    ContactKinematics<Real> k;
+    k.overlap = Real(wc.overlap);
+    k.normal = Vec3<Real>(wc.normal);
+    const Real ri = radius[i];
+    k.lever = ri - k.overlap;
+    const Vec3<Real> wi(angular_velocity[i]);
+    k.velocity = Vec3<Real>(velocity[i] - wc.wall_velocity) - cross(wi * k.lever, k.normal);
+    k.angular_velocity = wi - Vec3<Real>(walls[w].angular_velocity);
+    k.effective_mass = mass[i];
+    k.effective_radius = ri;
+    apply(i, kWallPartnerBase + ParticleId(w), pairs(material[i], walls[w].material), k, total, touched);
+  }
+
+  GS_HD void apply(Index i, ParticleId partner_id, const PairParams<Real>& p, const ContactKinematics<Real>& k,
+                   ContactLoad<Real>& total, unsigned& touched) const {
+    ContactSprings<Real> springs;
+    int slot = -1;
+    if constexpr (SlotTable<Real, Effects>::kActive) {
+      slot = history.find_or_claim(i, partner_id, touched);
+      if (slot >= 0) {
+        touched |= 1u << slot;
+        springs = history.load(i, slot);
+      } else {
+        report_fault(fault, kFaultSlotsExhausted, id[i], step);
+      }
+    }
+    const ContactLoad<Real> load = contact_load<Real, Model, Effects>(p, k, springs, dt);
+    if constexpr (SlotTable<Real, Effects>::kActive) {
+      if (slot >= 0) history.store(i, slot, springs);
+    }
+    total.force += load.force;
+    if constexpr (kTorque) total.torque += load.torque;
+  }
+};
+
+}  // namespace gs

@@ -1,0 +1,189 @@
+#include "engine/simulation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#include "walls/wall_motion.hpp"
+
+namespace gs {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double largest_radius(const std::vector<ParticleInit>& particles) {
+  double r = 0;
+  for (const auto& p : particles) r = std::max(r, p.radius);
+  return r;
+}
+
+template <class T>
+std::vector<T> permuted(const std::vector<T>& v, const std::vector<std::size_t>& order) {
+  std::vector<T> out(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) out[k] = v[order[k]];
+  return out;
+}
+
+}  // namespace
+
+Simulation::Simulation(const SceneSpec& scene, const RunOptions& options) : scene_(scene), options_(options) {
+  const Backend b = options.backend;
+  store_.backend = b;
+  for (auto* a : {&store_.radius, &store_.mass, &store_.inertia}) *a = DeviceArray<float>(b);
+  for (auto* a : {&store_.position, &store_.velocity, &store_.angular_velocity}) *a = DeviceArray<Vec3d>(b);
+  store_.id = DeviceArray<ParticleId>(b);
+  store_.material = DeviceArray<std::uint8_t>(b);
+  store_.marker = DeviceArray<std::uint8_t>(b);
+  store_.orientation = DeviceArray<Quaternion>(b);
+
+  kernels_ = make_step_kernels({b, scene.precision, scene.model, scene.effects}, make_pair_table(scene),
+                               scene.contact_slots);
+  grid_ = make_cell_grid(scene.domain_min, scene.domain_max, 2.0 * largest_radius(scene.particles));
+  walls_ = scene.walls;
+  for (const Wall& w : walls_) walls_move_ = walls_move_ || norm2(w.velocity) > 0 || norm2(w.angular_velocity) > 0;
+  move_walls(0.0);
+  upload(scene.particles);
+
+  // Forces at t = 0 for the first half kick.
+  rebuild_cells();
+  kernels_->compute_forces(store_, 0.0, 0);
+  check_fault();
+}
+
+void Simulation::upload(const std::vector<ParticleInit>& particles) {
+  const std::size_t n = particles.size();
+  std::vector<ParticleId> id(n);
+  std::vector<std::uint8_t> material(n), marker(n);
+  std::vector<float> radius(n), mass(n), inertia(n);
+  std::vector<Vec3d> position(n), velocity(n), angular_velocity(n);
+  std::vector<Quaternion> orientation(n, Quaternion{1, 0, 0, 0});
+  for (std::size_t i = 0; i < n; ++i) {
+    const ParticleInit& p = particles[i];
+    const double m = 4.0 / 3.0 * M_PI * p.radius * p.radius * p.radius * scene_.materials[p.material].density;
+    id[i] = p.id;
+    material[i] = std::uint8_t(p.material);
+    marker[i] = p.marker;
+    radius[i] = float(p.radius);
+    mass[i] = float(m);
+    inertia[i] = float(0.4 * m * p.radius * p.radius);
+    position[i] = p.position;
+    velocity[i] = p.velocity;
+    angular_velocity[i] = p.angular_velocity;
+  }
+  store_.id.from_host(id);
+  store_.material.from_host(material);
+  store_.marker.from_host(marker);
+  store_.radius.from_host(radius);
+  store_.mass.from_host(mass);
+  store_.inertia.from_host(inertia);
+  store_.position.from_host(position);
+  store_.velocity.from_host(velocity);
+  store_.angular_velocity.from_host(angular_velocity);
+  store_.orientation.from_host(orientation);
+  store_.n_owned = Index(n);
+  store_.n_ghost = 0;
+  kernels_->reserve(Index(n));
+}
+
+void Simulation::move_walls(double t) {
+  for (Wall& w : walls_) update_wall_pose(w, t);
+  kernels_->set_walls(walls_);
+}
+
+void Simulation::rebuild_cells() { kernels_->build_cell_list(store_, grid_); }
+
+void Simulation::run(long long steps) {
+  const double dt = scene_.time_step;
+  IntegrationParams p{dt, scene_.gravity, scene_.domain_min, scene_.domain_max, 0.5 * grid_.cell_size, 0};
+  for (long long s = 0; s < steps; ++s) {
+    auto t0 = std::chrono::steady_clock::now();
+    p.step = step_ + 1;
+    kernels_->kick_drift(store_, p);
+    if (walls_move_) move_walls(time_ + dt);
+    auto t1 = std::chrono::steady_clock::now();
+    timings_.integrate += std::chrono::duration<double>(t1 - t0).count();
+    rebuild_cells();
+    if (options_.reorder_interval > 0 && (step_ + 1) % options_.reorder_interval == 0) {
+      kernels_->reorder_by_cells(store_);
+      rebuild_cells();
+    }
+    auto t2 = std::chrono::steady_clock::now();
+    timings_.neighbours += std::chrono::duration<double>(t2 - t1).count();
+    kernels_->compute_forces(store_, dt, p.step);
+    auto t3 = std::chrono::steady_clock::now();
+    timings_.forces += std::chrono::duration<double>(t3 - t2).count();
+    kernels_->kick(store_, dt, scene_.gravity);
+    timings_.integrate += seconds_since(t3);
+    ++step_;
+    time_ = double(step_) * dt;
+    if (options_.fault_check_interval > 0 && step_ % options_.fault_check_interval == 0) check_fault();
+  }
+  check_fault();
+}
+
+void Simulation::check_fault() {
+  const Fault f = kernels_->take_fault();
+  if (f.code == kFaultNone) return;
+  throw SimulationFault("step " + std::to_string(f.step) + ": particle " + std::to_string(f.particle) + ": " +
+                        fault_cause(f.code));
+}
+
+ParticleSnapshot Simulation::snapshot() const {
+  kernels_->synchronize();
+  const std::vector<ParticleId> id = store_.id.to_host();
+  const std::size_t n = std::size_t(store_.n_owned);
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
+  auto owned = [n](auto v) { v.resize(n); return v; };
+  ParticleSnapshot s;
+  s.time = time_;
+  s.step = step_;
+  s.id = permuted(owned(id), order);
+  s.material = permuted(owned(store_.material.to_host()), order);
+  s.marker = permuted(owned(store_.marker.to_host()), order);
+  s.radius = permuted(owned(store_.radius.to_host()), order);
+  s.mass = permuted(owned(store_.mass.to_host()), order);
+  s.inertia = permuted(owned(store_.inertia.to_host()), order);
+  s.position = permuted(owned(store_.position.to_host()), order);
+  s.velocity = permuted(owned(store_.velocity.to_host()), order);
+  s.angular_velocity = permuted(owned(store_.angular_velocity.to_host()), order);
+  s.orientation = permuted(owned(store_.orientation.to_host()), order);
+  s.force = permuted(kernels_->forces(store_), order);
+  s.torque = permuted(kernels_->torques(store_), order);
+  return s;
+}
+
+HostHistory Simulation::history() const {
+  HostHistory h = kernels_->history(store_);
+  if (h.partner.empty()) return h;
+  const std::vector<ParticleId> id = store_.id.to_host();
+  const std::size_t n = std::size_t(store_.n_owned), k = std::size_t(h.slots);
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
+  HostHistory out;
+  out.slots = h.slots;
+  out.partner.resize(n * k);
+  out.tangential.resize(n * k);
+  out.rolling.resize(n * k);
+  for (std::size_t r = 0; r < n; ++r)
+    for (std::size_t s = 0; s < k; ++s) {
+      out.partner[r * k + s] = h.partner[order[r] * k + s];
+      out.tangential[r * k + s] = h.tangential[order[r] * k + s];
+      out.rolling[r * k + s] = h.rolling[order[r] * k + s];
+    }
+  return out;
+}
+
+std::size_t Simulation::device_bytes() const {
+  const ParticleStore& s = store_;
+  return s.id.bytes() + s.material.bytes() + s.marker.bytes() + s.radius.bytes() + s.mass.bytes() +
+         s.inertia.bytes() + s.position.bytes() + s.velocity.bytes() + s.angular_velocity.bytes() +
+         s.orientation.bytes() + kernels_->bytes();
+}
+
+}  // namespace gs

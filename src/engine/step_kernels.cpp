@@ -1,0 +1,62 @@
+#include "engine/step_kernels.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "backend/backend.hpp"
+#include "contact/contact_time.hpp"
+
+namespace gs {
+
+std::unique_ptr<StepKernels> make_step_kernels(const KernelChoice& c, const PairTableHost& t, int slots) {
+  if (c.backend == Backend::cpu) return make_step_kernels_cpu(c, t, slots);
+#ifdef GS_HAVE_CUDA
+  return make_step_kernels_cuda(c, t, slots);
+#else
+  throw std::runtime_error("backend cuda asked for, but this grainstorm was built without the CUDA backend");
+#endif
+}
+
+namespace {
+
+// Effective moduli of two Hertzian materials.
+double youngs_eff(const MaterialSpec& a, const MaterialSpec& b) {
+  return 1.0 / ((1 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus +
+                (1 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus);
+}
+double shear_eff(const MaterialSpec& a, const MaterialSpec& b) {
+  return 1.0 / (2 * (2 - a.poisson_ratio) * (1 + a.poisson_ratio) / a.youngs_modulus +
+                2 * (2 - b.poisson_ratio) * (1 + b.poisson_ratio) / b.youngs_modulus);
+}
+
+}  // namespace
+
+PairTableHost make_pair_table(const SceneSpec& scene) {
+  const int n = int(scene.materials.size());
+  PairTableHost t;
+  t.n_materials = n;
+  const std::size_t nn = std::size_t(n) * n;
+  for (auto* v : {&t.stiffness_normal, &t.stiffness_tangential, &t.stiffness_rolling, &t.damping_ratio, &t.friction,
+                  &t.rolling_friction, &t.cohesion, &t.youngs_modulus_eff, &t.shear_modulus_eff})
+    v->assign(nn, 0.0);
+  for (const PairSpec& p : scene.pairs) {
+    for (const std::size_t k : {std::size_t(p.material_a) * n + p.material_b, std::size_t(p.material_b) * n + p.material_a}) {
+      t.stiffness_normal[k] = p.stiffness_normal;
+      t.stiffness_tangential[k] = p.stiffness_tangential;
+      t.stiffness_rolling[k] = p.stiffness_rolling;
+      t.damping_ratio[k] = damping_ratio_from_restitution(p.restitution);
+      t.friction[k] = p.friction;
+      t.rolling_friction[k] = p.rolling_friction;
+      t.cohesion[k] = p.cohesion_energy_density;
+      if (scene.model == ContactModel::hertz_mindlin) {
+        const MaterialSpec& a = scene.materials[p.material_a];
+        const MaterialSpec& b = scene.materials[p.material_b];
+        t.youngs_modulus_eff[k] = youngs_eff(a, b);
+        t.shear_modulus_eff[k] = shear_eff(a, b);
+      }
+    }
+  }
+  return t;
+}
+
+}  // namespace gs

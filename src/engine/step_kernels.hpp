@@ -1,0 +1,80 @@
+#pragma once
+// The per-step work of one rank behind one interface. An implementation is
+// compiled per backend, force precision, contact model and set of effects;
+// make_step_kernels picks the one a scene needs, so effects a scene does not
+// use cost neither arithmetic nor memory.
+#include <memory>
+#include <vector>
+
+#include "core/fault.hpp"
+#include "core/particle_store.hpp"
+#include "integrate/velocity_verlet.hpp"
+#include "neighbor/cell_grid.hpp"
+#include "scene/scene.hpp"
+
+namespace gs {
+
+// Contact history of particles on the host, in fp64, for checkpoints and
+// migration: entry (particle p, slot s) at p * slots + s.
+struct HostHistory {
+  int slots = 0;
+  std::vector<ParticleId> partner;
+  std::vector<Vec3d> tangential;
+  std::vector<Vec3d> rolling;
+};
+
+struct StepTimings {
+  double integrate = 0, neighbours = 0, forces = 0;
+};
+
+class StepKernels {
+ public:
+  virtual ~StepKernels() = default;
+
+  // Sizes the force arrays and the contact history for n particles (owned +
+  // ghosts); keeps the history of the first n_keep.
+  virtual void reserve(Index n) = 0;
+  virtual void set_walls(const std::vector<Wall>& walls) = 0;
+
+  virtual void kick_drift(ParticleStore& s, const IntegrationParams& p) = 0;
+  virtual void build_cell_list(ParticleStore& s, const CellGrid& grid) = 0;
+  virtual void compute_forces(ParticleStore& s, double dt, long long step) = 0;
+  virtual void kick(ParticleStore& s, double dt, const Vec3d& gravity) = 0;
+  // Reorders owned particles, and their history, by the last cell list.
+  virtual void reorder_by_cells(ParticleStore& s) = 0;
+
+  virtual Fault take_fault() = 0;  // and clears it
+  virtual void synchronize() = 0;
+
+  // Host copies, owned particles in store order.
+  virtual std::vector<Vec3d> forces(const ParticleStore& s) const = 0;
+  virtual std::vector<Vec3d> torques(const ParticleStore& s) const = 0;
+  virtual HostHistory history(const ParticleStore& s) const = 0;
+  virtual void set_history(const ParticleStore& s, const HostHistory& h) = 0;
+
+  virtual std::size_t bytes() const = 0;  // memory held by forces, history and cell list
+};
+
+struct KernelChoice {
+  Backend backend;
+  Precision precision;
+  ContactModel model;
+  unsigned effects;
+};
+
+// The material pair table in force precision, n_materials^2 entries.
+struct PairTableHost {
+  int n_materials = 0;
+  std::vector<double> stiffness_normal, stiffness_tangential, stiffness_rolling, damping_ratio, friction,
+      rolling_friction, cohesion, youngs_modulus_eff, shear_modulus_eff;
+};
+PairTableHost make_pair_table(const SceneSpec& scene);
+
+std::unique_ptr<StepKernels> make_step_kernels(const KernelChoice& choice, const PairTableHost& pairs,
+                                               int contact_slots);
+std::unique_ptr<StepKernels> make_step_kernels_cpu(const KernelChoice& choice, const PairTableHost& pairs,
+                                                   int contact_slots);
+std::unique_ptr<StepKernels> make_step_kernels_cuda(const KernelChoice& choice, const PairTableHost& pairs,
+                                                    int contact_slots);
+
+}  // namespace gs

@@ -1,0 +1,139 @@
+#pragma once
+// The per-step kernels, written once over an execution policy `Exec` (CpuExec
+// or CudaExec), which only decides who runs each per-particle functor and how
+// keys are sorted.
+#include "engine/force_kernel.hpp"
+#include "engine/step_kernels.hpp"
+#include "neighbor/cell_list.hpp"
+
+namespace gs {
+
+template <class T>
+struct Gather {
+  const T* from;
+  T* to;
+  const Index* order;
+  GS_HD void operator()(Index k) const { to[k] = from[order[k]]; }
+};
+
+// Gathers a slot-major history array slot by slot (no order: plain copy).
+template <class T>
+struct GatherSlots {
+  const T* from;
+  T* to;
+  const Index* order;
+  std::size_t stride;
+  Index n;
+  GS_HD void operator()(Index k) const {
+    const Index s = k / n, i = k % n;
+    to[s * stride + i] = from[s * stride + (order ? order[i] : i)];
+  }
+};
+
+template <class Exec, class Real, ContactModel Model, unsigned Effects>
+class StepKernelsImpl final : public StepKernels {
+  static constexpr bool kHistory = (Effects & (kFriction | kRollingResistance)) != 0;
+  static constexpr bool kTorque = kHistory;
+
+ public:
+  StepKernelsImpl(const PairTableHost& table, int slots)
+      : pairs_(Exec::backend), walls_(Exec::backend), fault_(Exec::backend, 1), cells_(Exec::backend) {
+    upload_pairs(table);
+    fault_.zero();
+    history_.slots = kHistory ? slots : 0;
+    history_.partner = DeviceArray<ParticleId>(Exec::backend);
+    history_.tangential = DeviceArray<Vec3<Real>>(Exec::backend);
+    history_.rolling = DeviceArray<Vec3<Real>>(Exec::backend);
+    forces_.force = DeviceArray<Vec3<Real>>(Exec::backend);
+    forces_.torque = DeviceArray<Vec3<Real>>(Exec::backend);
+  }
+
+  void reserve(Index n) override {
+    forces_.force.resize(n);
+    if (kTorque) forces_.torque.resize(n);
+    if (kHistory && std::size_t(n) > history_.stride) grow_history(std::size_t(n));
+  }
+
+  void set_walls(const std::vector<Wall>& walls) override {
+    walls_.from_host(walls);
+    n_walls_ = int(walls.size());
+  }
+
+  void kick_drift(ParticleStore& s, const IntegrationParams& p) override {
+    KickDrift<Real> f{half_kick(s, 0.5 * p.dt, p.gravity), s.position.data(), s.orientation.data(), s.id.data(), p,
+                      fault_.data()};
+    Exec::parallel_for(s.n_owned, f);
+  }
+
+  void kick(ParticleStore& s, double dt, const Vec3d& gravity) override {
+    Exec::parallel_for(s.n_owned, half_kick(s, 0.5 * dt, gravity));
+  }
+
+  void build_cell_list(ParticleStore& s, const CellGrid& grid) override {
+    build_cells<Exec>(cells_, s.position.data(), s.id.data(), s.size(), grid);
+  }
+
+  void compute_forces(ParticleStore& s, double dt, long long step) override {
+    ForceKernel<Real, Model, Effects> k{s.id.data(), s.material.data(), s.radius.data(), s.mass.data(),
+                                        s.position.data(), s.velocity.data(), s.angular_velocity.data(),
+                                        cells_.grid, cells_.sorted.data(), cells_.cell_begin.data(),
+                                        cells_.cell_end.data(), PairTable<Real>{pairs_.data(), n_materials_},
+                                        walls_.data(), n_walls_, slot_table(), forces_.force.data(),
+                                        kTorque ? forces_.torque.data() : nullptr, Real(dt), fault_.data(), step};
+    Exec::parallel_for(s.n_owned, k);
+  }
+
+  void reorder_by_cells(ParticleStore& s) override;
+
+  Fault take_fault() override {
+    Fault f = fault_.to_host()[0];
+    if (f.code != kFaultNone) fault_.zero();
+    return f;
+  }
+  void synchronize() override { Exec::synchronize(); }
+
+  std::vector<Vec3d> forces(const ParticleStore& s) const override { return widen(forces_.force, s.n_owned); }
+  std::vector<Vec3d> torques(const ParticleStore& s) const override {
+    if (!kTorque) return std::vector<Vec3d>(s.n_owned);
+    return widen(forces_.torque, s.n_owned);
+  }
+  HostHistory history(const ParticleStore& s) const override;
+  void set_history(const ParticleStore& s, const HostHistory& h) override;
+
+  std::size_t bytes() const override {
+    return forces_.force.bytes() + forces_.torque.bytes() + history_.partner.bytes() + history_.tangential.bytes() +
+           history_.rolling.bytes() + cells_.bytes() + pairs_.bytes() + walls_.bytes();
+  }
+
+ private:
+  HalfKick<Real> half_kick(ParticleStore& s, double half_dt, const Vec3d& gravity) {
+    return HalfKick<Real>{s.velocity.data(), s.angular_velocity.data(), forces_.force.data(),
+                          kTorque ? forces_.torque.data() : nullptr, s.mass.data(), s.inertia.data(), half_dt,
+                          gravity};
+  }
+  SlotTable<Real, Effects> slot_table() {
+    return SlotTable<Real, Effects>{history_.partner.data(), history_.tangential.data(), history_.rolling.data(),
+                                    history_.slots, history_.stride};
+  }
+  void upload_pairs(const PairTableHost& t);
+  void grow_history(std::size_t stride);
+  static std::vector<Vec3d> widen(const DeviceArray<Vec3<Real>>& a, Index n) {
+    std::vector<Vec3<Real>> h = a.to_host();
+    std::vector<Vec3d> out(n);
+    for (Index i = 0; i < n; ++i) out[i] = Vec3d(h[i]);
+    return out;
+  }
+
+  DeviceArray<PairParams<Real>> pairs_;
+  int n_materials_ = 0;
+  DeviceArray<Wall> walls_;
+  int n_walls_ = 0;
+  DeviceArray<Fault> fault_;
+  CellList cells_;
+  ForceArrays<Real> forces_;
+  ContactHistory<Real> history_;
+};
+
+}  // namespace gs
+
+#include "engine/step_kernels_impl_detail.hpp"

@@ -1,0 +1,49 @@
+#pragma once
+// Uniform cell grid for the contact search. The cell edge is at least the
+// largest particle diameter, so every contact partner of a particle lies in
+// its own or one of the 26 surrounding cells.
+#include <cstdint>
+
+#include "core/hd.hpp"
+#include "core/vec3.hpp"
+
+namespace gs {
+
+struct CellCoord {
+  int x, y, z;
+};
+
+struct CellGrid {
+  Vec3d origin;        // lower corner of cell (0,0,0)
+  double cell_size = 1;
+  double inverse_cell_size = 1;
+  int dims[3] = {1, 1, 1};
+
+  GS_HD std::int64_t cell_count() const { return std::int64_t(dims[0]) * dims[1] * dims[2]; }
+
+  // Cell of a point; points outside are clamped to the border cells (their
+  // escape is reported by the integrator, not here).
+  GS_HD CellCoord coord(const Vec3d& x) const {
+    return {clamp_axis((x.x - origin.x) * inverse_cell_size, 0), clamp_axis((x.y - origin.y) * inverse_cell_size, 1),
+            clamp_axis((x.z - origin.z) * inverse_cell_size, 2)};
+  }
+  GS_HD std::int64_t linear(const CellCoord& c) const {
+    return (std::int64_t(c.z) * dims[1] + c.y) * dims[0] + c.x;
+  }
+  GS_HD bool inside(const CellCoord& c) const {
+    return c.x >= 0 && c.y >= 0 && c.z >= 0 && c.x < dims[0] && c.y < dims[1] && c.z < dims[2];
+  }
+
+ private:
+  GS_HD int clamp_axis(double f, int axis) const {
+    int c = f < 0 ? -1 : int(f);
+    if (c < 0) c = 0;
+    if (c >= dims[axis]) c = dims[axis] - 1;
+    return c;
+  }
+};
+
+// Grid over the box [lo, hi] with cells of edge >= min_cell_size.
+CellGrid make_cell_grid(const Vec3d& lo, const Vec3d& hi, double min_cell_size);
+
+}  // namespace gs

@@ -1,0 +1,91 @@
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include "scene/scene.hpp"
+
+namespace gs {
+
+// A generator could not do what was asked (e.g. the region is too full). The
+// scene loader adds the file, line and key to the message.
+struct GenerateError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Properties shared by every particle of one generated set.
+struct ParticleTemplate {
+  int material = 0;
+  Vec3d velocity;
+  Vec3d angular_velocity;
+  std::uint8_t marker = 0;
+};
+
+// Simple cubic lattice: centres min + spacing * (i, j, k) that lie inside [min, max].
+struct LatticeSpec {
+  ParticleTemplate tmpl;
+  double radius = 0;
+  Vec3d min, max;
+  double spacing = 0;
+};
+
+// Number of lattice sites along one axis of [lo, hi] (0 when hi < lo).
+std::size_t lattice_sites(double lo, double hi, double spacing);
+std::size_t lattice_count(const LatticeSpec& spec);
+
+// Appends the lattice to `out`; ids continue from out.size().
+void generate_lattice(const LatticeSpec& spec, std::vector<ParticleInit>& out);
+
+// Region that must contain a random fill: an axis-aligned box or a cylinder.
+struct FillRegion {
+  enum class Kind { box, cylinder } kind = Kind::box;
+  Vec3d min, max;     // box
+  Vec3d base, axis;   // cylinder: centre of the base circle, unit axis
+  double radius = 0;  // cylinder radius [m]
+  double length = 0;  // cylinder length along the axis [m]
+};
+
+double region_volume(const FillRegion& region);
+
+// One diameter of a discrete size distribution and its share of the count.
+struct SizeClass {
+  double diameter = 0;
+  double fraction = 0;
+};
+
+// How the radii of a random fill are chosen.
+struct SizeSpec {
+  enum class Kind { fixed, uniform, classes } kind = Kind::fixed;
+  double radius_min = 0, radius_max = 0;  // fixed: both equal; uniform: range [m]
+  std::vector<SizeClass> classes;         // fractions sum to 1
+};
+
+struct RandomFillSpec {
+  ParticleTemplate tmpl;
+  FillRegion region;
+  std::size_t count = 0;
+  SizeSpec size;
+  std::uint64_t seed = 0;
+  int max_attempts = 5000;  // overlap tests per particle before giving up
+};
+
+// Radii of a random fill, largest first. A class distribution is split by the
+// largest-remainder method, so each class gets round(fraction * count) particles.
+std::vector<double> random_fill_radii(const SizeSpec& size, std::size_t count, std::uint64_t seed);
+
+// Appends `count` spheres placed at random inside the region so that they
+// overlap neither each other nor any sphere already in `out` (earlier sets).
+// Random sequential addition, largest first, each sphere uniform over the
+// space still free; the same seed gives the same fill on every platform.
+// Ids continue from out.size(). Throws GenerateError when the region is too
+// full (or for more than 2e8 spheres).
+void generate_random_fill(const RandomFillSpec& spec, std::vector<ParticleInit>& out);
+
+// Finds one pair of overlapping spheres (centre distance below the sum of the
+// radii by more than a relative `tolerance`), first < second. Returns false
+// when there is none. Throws GenerateError beyond 2e8 spheres.
+bool find_overlap(const std::vector<ParticleInit>& particles, std::size_t& first, std::size_t& second,
+                  double tolerance = 1e-9);
+
+}  // namespace gs

@@ -1,0 +1,70 @@
+#pragma once
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/types.hpp"
+#include "core/vec3.hpp"
+#include "walls/wall.hpp"
+
+namespace gs {
+
+// A bad scene: the message names the key and the line of the file.
+struct SceneError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct MaterialSpec {
+  std::string name;
+  double density = 0;          // [kg/m^3]
+  double youngs_modulus = 0;   // [Pa], Hertz-Mindlin only
+  double poisson_ratio = 0;    // [-], Hertz-Mindlin only
+};
+
+// Contact parameters of a pair of materials as written in the scene.
+struct PairSpec {
+  int material_a = 0, material_b = 0;
+  double stiffness_normal = 0;       // linear model [N/m]
+  double stiffness_tangential = 0;   // linear model [N/m]
+  double stiffness_rolling = 0;      // rolling spring [N/m]
+  double restitution = 1;            // normal coefficient of restitution in (0,1]
+  double friction = 0;               // sliding friction mu >= 0
+  double rolling_friction = 0;       // rolling friction mu_r >= 0
+  double cohesion_energy_density = 0;// [N/m^2]
+};
+
+// One particle as created at t = 0.
+struct ParticleInit {
+  ParticleId id = 0;
+  int material = 0;
+  double radius = 0;
+  Vec3d position, velocity, angular_velocity;
+  std::uint8_t marker = 0;
+};
+
+struct OutputSpec {
+  double interval = 0;     // simulated seconds between snapshots; 0: final only
+  std::string directory = "out";
+};
+
+struct SceneSpec {
+  std::string path;                  // file it came from, for messages
+  Vec3d domain_min, domain_max;      // particles must stay inside [m]
+  Vec3d gravity;                     // [m/s^2]
+  ContactModel model = ContactModel::linear;
+  Precision precision = Precision::fp32;
+  unsigned effects = 0;              // set of Effect bits
+  std::vector<MaterialSpec> materials;
+  std::vector<PairSpec> pairs;       // every unordered pair of materials that can touch
+  std::vector<ParticleInit> particles;
+  std::vector<Wall> walls;
+  std::vector<std::string> wall_names;
+  double time_step = 0;              // resolved absolute time step [s]
+  double contact_time = 0;           // shortest pair contact time [s]
+  double duration = 0;               // simulated time [s]
+  OutputSpec output;
+  int contact_slots = 12;            // history slots per particle
+};
+
+}  // namespace gs

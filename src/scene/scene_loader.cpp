@@ -1,0 +1,175 @@
+#include "scene/scene_loader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "contact/contact_time.hpp"
+#include "scene/generators.hpp"
+#include "scene/scene_sections.hpp"
+
+namespace gs {
+
+using namespace scene_yaml;
+
+namespace {
+
+const std::vector<std::string> kTopKeys = {"domain",    "gravity", "contact_model", "precision",     "effects",
+                                           "materials", "pairs",   "particles",     "walls",         "time_step",
+                                           "duration",  "output",  "contact_slots"};
+
+void parse_globals(const Map& top, SceneSpec& s) {
+  box_corners(Map(top.get("domain"), {"min", "max"}), s.domain_min, s.domain_max);
+  s.gravity = vec3_or(top, "gravity", Vec3d());
+  if (top.has("contact_model"))
+    s.model = choice(top.get("contact_model"), {"linear", "hertz_mindlin"}) == "linear" ? ContactModel::linear
+                                                                                        : ContactModel::hertz_mindlin;
+  if (top.has("precision"))
+    s.precision = choice(top.get("precision"), {"fp32", "fp64"}) == "fp32" ? Precision::fp32 : Precision::fp64;
+  if (top.has("effects")) {
+    const Map e(top.get("effects"), {"friction", "rolling_resistance", "cohesion"});
+    const std::pair<const char*, Effect> bits[] = {
+        {"friction", kFriction}, {"rolling_resistance", kRollingResistance}, {"cohesion", kCohesion}};
+    for (const auto& [key, bit] : bits)
+      if (e.has(key) && boolean(e.get(key))) s.effects |= bit;
+  }
+  s.duration = positive(top.get("duration"));
+  if (top.has("output")) {
+    const Map o(top.get("output"), {"interval", "directory"});
+    s.output.interval = number_or(o, "interval", 0.0, nonnegative);
+    if (o.has("directory")) s.output.directory = text(o.get("directory"));
+  }
+  if (top.has("contact_slots")) s.contact_slots = int(integer(top.get("contact_slots"), 1, kMaxContactSlots));
+}
+
+void parse_materials(const Map& top, SceneSpec& s) {
+  const Val list = top.get("materials");
+  const bool hertz = s.model == ContactModel::hertz_mindlin;
+  for_each_item(list, [&](const Val& item, std::size_t) {
+    const Map m(item, {"name", "density", "youngs_modulus", "poisson_ratio"});
+    MaterialSpec mat;
+    mat.name = text(m.get("name"));
+    for (const auto& other : s.materials)
+      if (other.name == mat.name) fail(m.get("name"), "material '" + mat.name + "' is defined twice");
+    mat.density = positive(m.get("density"));
+    // Elastic constants matter to Hertz-Mindlin only; elsewhere they are optional but still checked.
+    mat.youngs_modulus = hertz ? positive(m.get("youngs_modulus")) : number_or(m, "youngs_modulus", 0.0, positive);
+    const Val nu = hertz ? m.get("poisson_ratio") : m.opt("poisson_ratio");
+    if (nu.present()) {
+      mat.poisson_ratio = number(nu);
+      if (mat.poisson_ratio < 0 || mat.poisson_ratio >= 0.5)
+        fail(nu, "must lie in [0, 0.5), got " + str(mat.poisson_ratio));
+    }
+    s.materials.push_back(mat);
+  });
+  if (s.materials.empty()) fail(list, "at least one material is needed");
+}
+
+PairSpec parse_pair(const SceneSpec& s, const Map& m) {
+  const Val names = m.get("materials");
+  if (!names.node.IsSequence() || names.node.size() != 2)
+    fail(names, "expected a list of two material names, got " + describe(names.node));
+  int idx[2];
+  for_each_item(names, [&](const Val& item, std::size_t i) { idx[i] = material_index(s, item); });
+  PairSpec p;
+  p.material_a = std::min(idx[0], idx[1]);
+  p.material_b = std::max(idx[0], idx[1]);
+  for (const auto& q : s.pairs)
+    if (q.material_a == p.material_a && q.material_b == p.material_b)
+      fail(names, "the pair [" + s.materials[p.material_a].name + ", " + s.materials[p.material_b].name +
+                      "] is given twice");
+
+  const bool linear = s.model == ContactModel::linear;
+  p.stiffness_normal = linear ? positive(m.get("stiffness_normal")) : number_or(m, "stiffness_normal", 0.0, positive);
+  // k_t = 2/7 k_n gives a sphere the same tangential as normal oscillation period.
+  p.stiffness_tangential = number_or(m, "stiffness_tangential", 2.0 / 7.0 * p.stiffness_normal, positive);
+  // Hertz-Mindlin has no linear k_t to borrow the rolling spring from.
+  const bool rolling_required = !linear && (s.effects & kRollingResistance);
+  p.stiffness_rolling = rolling_required ? positive(m.get("stiffness_rolling"))
+                                         : number_or(m, "stiffness_rolling", p.stiffness_tangential, positive);
+  const Val e = m.get("restitution");
+  p.restitution = number(e);
+  if (!(p.restitution > 0 && p.restitution <= 1)) fail(e, "must lie in (0, 1], got " + str(p.restitution));
+  p.friction = number_or(m, "friction", 0.0, nonnegative);
+  p.rolling_friction = number_or(m, "rolling_friction", 0.0, nonnegative);
+  p.cohesion_energy_density = number_or(m, "cohesion_energy_density", 0.0, nonnegative);
+  return p;
+}
+
+bool has_pair(const SceneSpec& s, int a, int b) {
+  for (const auto& p : s.pairs)
+    if (p.material_a == std::min(a, b) && p.material_b == std::max(a, b)) return true;
+  return false;
+}
+
+// Every pair of materials that can touch needs contact parameters: particle
+// materials among themselves and with every wall material.
+void require_pairs(const SceneSpec& s, const Val& where) {
+  const std::size_t n = s.materials.size();
+  std::vector<char> on_particle(n, 0), on_wall(n, 0);
+  for (const auto& p : s.particles) on_particle[p.material] = 1;
+  for (const auto& w : s.walls) on_wall[w.material] = 1;
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a; b < n; ++b) {
+      const bool touch = (on_particle[a] && (on_particle[b] || on_wall[b])) || (on_wall[a] && on_particle[b]);
+      if (touch && !has_pair(s, int(a), int(b)))
+        fail(where, "no entry for the material pair [" + s.materials[a].name + ", " + s.materials[b].name +
+                        "]; every pair of materials that can touch needs one");
+    }
+}
+
+void parse_pairs(const Map& top, SceneSpec& s) {
+  const Val list = top.opt("pairs");
+  if (list.present())
+    for_each_item(list, [&](const Val& item, std::size_t) {
+      s.pairs.push_back(parse_pair(
+          s, Map(item, {"materials", "stiffness_normal", "stiffness_tangential", "stiffness_rolling", "restitution",
+                        "friction", "rolling_friction", "cohesion_energy_density"})));
+    });
+  require_pairs(s, list);
+}
+
+void resolve_time_step(const Map& top, SceneSpec& s) {
+  const Val v = top.get("time_step");
+  const Map m(v, {"absolute", "fraction_of_contact_time"});
+  const std::string kind = m.one_of({"absolute", "fraction_of_contact_time"});
+  s.contact_time = critical_contact_time(s);
+  s.time_step = positive(m.get(kind));
+  if (kind == "fraction_of_contact_time") s.time_step *= s.contact_time;
+  const double limit = kStableFractionOfContactTime * s.contact_time;
+  if (!(s.time_step <= limit))
+    fail(v, "time step " + str(s.time_step) + " s exceeds the stability limit " + str(limit) + " s (" +
+                str(kStableFractionOfContactTime) + " x the shortest contact time " + str(s.contact_time) + " s)");
+}
+
+}  // namespace
+
+SceneSpec parse_scene(const std::string& yaml_text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw SceneError(source + ":" + std::to_string(std::max(1, e.mark.line + 1)) + ": yaml syntax: " + e.msg);
+  }
+  SceneSpec s;
+  s.path = source;
+  const Map top(Val{root, "", 1, &source}, kTopKeys);
+  parse_globals(top, s);
+  parse_materials(top, s);
+  parse_walls(top, s);
+  parse_particles(top, s);
+  parse_pairs(top, s);
+  resolve_time_step(top, s);
+  return s;
+}
+
+SceneSpec load_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path + ":1: scene: cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();  // an empty file leaves `text` empty, which parse_scene reports
+  return parse_scene(text.str(), path);
+}
+
+}  // namespace gs

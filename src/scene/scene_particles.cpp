@@ -1,0 +1,208 @@
+// The `particles:` section of a scene and the checks of the initial packing.
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <iterator>
+
+#include "scene/generators.hpp"
+#include "scene/scene_loader.hpp"
+#include "scene/scene_sections.hpp"
+
+namespace gs::scene_yaml {
+
+namespace {
+
+// Particles from `begin` up to the next origin were defined at `where`.
+struct Origin {
+  std::size_t begin;
+  Val where;
+};
+
+ParticleTemplate parse_template(const SceneSpec& s, const Map& m) {
+  ParticleTemplate t;
+  t.material = material_index(s, m.get("material"));
+  t.velocity = vec3_or(m, "velocity", Vec3d());
+  t.angular_velocity = vec3_or(m, "angular_velocity", Vec3d());
+  if (m.has("marker")) t.marker = std::uint8_t(integer(m.get("marker"), 0, 255));
+  return t;
+}
+
+// Runs a generator; its complaints become errors at the set's line.
+template <class F>
+void generate(const Val& where, F&& f) {
+  try {
+    f();
+  } catch (const GenerateError& e) {
+    fail(where, e.what());
+  }
+}
+
+void add_lattice(SceneSpec& s, const Val& v) {
+  const Map m(v, {"material", "radius", "min", "max", "spacing", "velocity", "angular_velocity", "marker"});
+  LatticeSpec spec;
+  spec.tmpl = parse_template(s, m);
+  spec.radius = positive(m.get("radius"));
+  spec.min = vec3(m.get("min"));
+  spec.max = vec3(m.get("max"));
+  // 5 % of the diameter between neighbours: close, but not touching at t = 0.
+  spec.spacing = number_or(m, "spacing", 2.1 * spec.radius, positive);
+  if (spec.spacing < 2 * spec.radius)
+    fail(m.opt("spacing"), "spacing " + str(spec.spacing) + " is below the particle diameter " +
+                               str(2 * spec.radius) + ": neighbours would overlap");
+  if (lattice_count(spec) == 0) fail(v, "no lattice site lies in [min, max]: min exceeds max on some axis");
+  generate(v, [&] { generate_lattice(spec, s.particles); });
+}
+
+FillRegion parse_region(const Val& v) {
+  const Map m(v, {"box", "cylinder"});
+  FillRegion r;
+  if (m.one_of({"box", "cylinder"}) == "box") {
+    r.kind = FillRegion::Kind::box;
+    box_corners(Map(m.get("box"), {"min", "max"}), r.min, r.max);
+    return r;
+  }
+  const Map c(m.get("cylinder"), {"base", "axis", "radius", "length"});
+  r.kind = FillRegion::Kind::cylinder;
+  r.base = vec3(c.get("base"));
+  r.axis = unit_vector(c.get("axis"));
+  r.radius = positive(c.get("radius"));
+  r.length = positive(c.get("length"));
+  return r;
+}
+
+std::vector<SizeClass> parse_distribution(const Val& v) {
+  std::vector<SizeClass> classes;
+  double total = 0;
+  for_each_item(v, [&](const Val& item, std::size_t) {
+    const Map m(item, {"diameter", "fraction"});
+    classes.push_back({positive(m.get("diameter")), positive(m.get("fraction"))});
+    total += classes.back().fraction;
+  });
+  if (classes.empty()) fail(v, "the distribution needs at least one diameter");
+  // Fractions written as rounded decimals (0.33, 0.33, 0.34) are fine; a sum
+  // that is plainly off is a slip worth reporting.
+  if (std::abs(total - 1) > 1e-3) fail(v, "the fractions must add up to 1, they add up to " + str(total));
+  for (auto& c : classes) c.fraction /= total;
+  return classes;
+}
+
+SizeSpec parse_sizes(const Map& m) {
+  SizeSpec size;
+  if (m.one_of({"radius", "diameter_distribution"}) == "diameter_distribution") {
+    size.kind = SizeSpec::Kind::classes;
+    size.classes = parse_distribution(m.get("diameter_distribution"));
+    return size;
+  }
+  const Val r = m.get("radius");
+  if (!r.node.IsMap()) {
+    size.kind = SizeSpec::Kind::fixed;
+    size.radius_min = size.radius_max = positive(r);
+    return size;
+  }
+  const Map range(r, {"min", "max"});
+  size.kind = SizeSpec::Kind::uniform;
+  size.radius_min = positive(range.get("min"));
+  size.radius_max = positive(range.get("max"));
+  if (size.radius_max < size.radius_min)
+    fail(r, "max " + str(size.radius_max) + " is below min " + str(size.radius_min));
+  return size;
+}
+
+void add_random_fill(SceneSpec& s, const Val& v) {
+  const Map m(v, {"material", "region", "count", "radius", "diameter_distribution", "seed", "velocity",
+                  "angular_velocity", "marker"});
+  RandomFillSpec spec;
+  spec.tmpl = parse_template(s, m);
+  spec.region = parse_region(m.get("region"));
+  spec.count = std::size_t(integer(m.get("count"), 1, kMaxParticleId));
+  spec.size = parse_sizes(m);
+  if (m.has("seed")) spec.seed = std::uint64_t(integer(m.get("seed"), 0, LLONG_MAX));
+  generate(v, [&] { generate_random_fill(spec, s.particles); });
+}
+
+void add_list(SceneSpec& s, const Val& v, std::vector<Origin>& origins) {
+  for_each_item(v, [&](const Val& item, std::size_t) {
+    const Map m(item, {"position", "radius", "material", "velocity", "angular_velocity", "marker"});
+    const ParticleTemplate t = parse_template(s, m);
+    if (s.particles.size() > kMaxParticleId) fail(item, "too many particles for 32-bit ids");
+    ParticleInit p;
+    p.id = ParticleId(s.particles.size());
+    p.material = t.material;
+    p.radius = positive(m.get("radius"));
+    p.position = vec3(m.get("position"));
+    p.velocity = t.velocity;
+    p.angular_velocity = t.angular_velocity;
+    p.marker = t.marker;
+    origins.push_back({s.particles.size(), item});
+    s.particles.push_back(p);
+  });
+}
+
+std::string describe(const ParticleInit& p) {
+  return "particle " + std::to_string(p.id) + " at " + str(p.position) + " with radius " + str(p.radius);
+}
+
+// Rounding in generated positions must not turn "touching" into "overlapping".
+constexpr double kTouchTolerance = 1e-9;
+
+void check_fit(const SceneSpec& s, const ParticleInit& p, const Val& where) {
+  const double slack = kTouchTolerance * p.radius;
+  const Vec3d& c = p.position;
+  const Vec3d &lo = s.domain_min, &hi = s.domain_max;
+  const double r = p.radius - slack;
+  if (c.x - r < lo.x || c.y - r < lo.y || c.z - r < lo.z || c.x + r > hi.x || c.y + r > hi.y || c.z + r > hi.z)
+    fail(where, describe(p) + " is not inside the domain " + str(lo) + " .. " + str(hi));
+  for (std::size_t w = 0; w < s.walls.size(); ++w) {
+    const double depth = wall_penetration(s.walls[w], c, p.radius);
+    if (depth > slack)
+      fail(where, describe(p) + " cuts " + str(depth) + " m into wall '" + s.wall_names[w] + "' at t = 0");
+  }
+}
+
+const Val& origin_of(const std::vector<Origin>& origins, std::size_t particle) {
+  auto it = std::upper_bound(origins.begin(), origins.end(), particle,
+                             [](std::size_t i, const Origin& o) { return i < o.begin; });
+  return std::prev(it)->where;
+}
+
+// `generated_alone`: the particles are one lattice or random fill, which
+// cannot overlap among themselves, so the costly pairwise check is skipped.
+void check_packing(const SceneSpec& s, const std::vector<Origin>& origins, bool generated_alone) {
+  for (std::size_t k = 0; k < origins.size(); ++k) {
+    const std::size_t end = k + 1 < origins.size() ? origins[k + 1].begin : s.particles.size();
+    for (std::size_t i = origins[k].begin; i < end; ++i) check_fit(s, s.particles[i], origins[k].where);
+  }
+  std::size_t a = 0, b = 0;
+  bool overlap = false;
+  if (!generated_alone)
+    generate(origins.front().where, [&] { overlap = find_overlap(s.particles, a, b, kTouchTolerance); });
+  if (overlap) {
+    const Val& first = origin_of(origins, a);
+    fail(origin_of(origins, b), describe(s.particles[b]) + " overlaps " + describe(s.particles[a]) + " (" +
+                                    first.path + ", line " + std::to_string(first.line) + ")");
+  }
+}
+
+}  // namespace
+
+void parse_particles(const Map& top, SceneSpec& s) {
+  const Val list = top.get("particles");
+  std::vector<Origin> origins;
+  std::size_t sets = 0;
+  bool any_list = false;
+  for_each_item(list, [&](const Val& item, std::size_t) {
+    const Map m(item, {"lattice", "random_fill", "list"});
+    const std::string kind = m.one_of({"lattice", "random_fill", "list"});
+    const Val set = m.get(kind);
+    ++sets;
+    any_list = any_list || kind == "list";
+    origins.push_back({s.particles.size(), set});
+    if (kind == "lattice") add_lattice(s, set);
+    if (kind == "random_fill") add_random_fill(s, set);
+    if (kind == "list") add_list(s, set, origins);
+  });
+  if (s.particles.empty()) fail(list, "the scene has no particles");
+  check_packing(s, origins, sets == 1 && !any_list);
+}
+
+}  // namespace gs::scene_yaml

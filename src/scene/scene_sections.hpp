@@ -1,0 +1,17 @@
+#pragma once
+// Section parsers of the scene loader that live outside scene_loader.cpp.
+#include "scene/scene_yaml.hpp"
+
+namespace gs::scene_yaml {
+
+// Index of the material named by v; error naming the known ones otherwise.
+int material_index(const SceneSpec& s, const Val& v);
+
+// `walls:` -> s.walls and s.wall_names (needs s.materials).
+void parse_walls(const Map& top, SceneSpec& s);
+
+// `particles:` -> s.particles, then checks them against the domain, the walls
+// and each other (needs s.materials, s.walls and the domain).
+void parse_particles(const Map& top, SceneSpec& s);
+
+}  // namespace gs::scene_yaml

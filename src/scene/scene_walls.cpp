@@ -1,0 +1,143 @@
+// The `walls:` section of a scene and the t = 0 wall geometry checks.
+#include <cmath>
+#include <map>
+
+#include "scene/scene_loader.hpp"
+#include "scene/scene_sections.hpp"
+
+namespace gs {
+
+double wall_penetration(const Wall& w, const Vec3d& c, double r) {
+  const Vec3d d = c - w.point;
+  const double h = dot(d, w.normal);  // height above the plane / position along the axis
+  switch (w.kind) {
+    case WallKind::plane:
+      return r - h;  // the whole back side counts as inside the wall
+    case WallKind::disk: {
+      const double rho = norm(d - h * w.normal);
+      if (rho <= w.radius) return r - std::abs(h);
+      return r - std::hypot(rho - w.radius, h);  // the nearest wall point is on the rim
+    }
+    case WallKind::cylinder:
+      if (h < 0 || h > w.length) return -r;
+      return norm(d - h * w.normal) + r - w.radius;
+  }
+  return -r;
+}
+
+namespace scene_yaml {
+
+namespace {
+
+// Prescribed motion, shared by every wall that one entry expands to.
+void parse_motion(const Val& v, Wall& w) {
+  const Map m(v, {"velocity", "rotation"});
+  w.velocity = vec3_or(m, "velocity", Vec3d());
+  if (!m.has("rotation")) return;
+  const Map r(m.get("rotation"), {"axis_point", "axis", "rpm"});
+  w.axis_point = vec3(r.get("axis_point"));
+  const Vec3d axis = unit_vector(r.get("axis"));
+  w.angular_velocity = axis * (number(r.get("rpm")) * 2.0 * M_PI / 60.0);
+}
+
+void add_wall(SceneSpec& s, const Wall& w, const std::string& name, const Val& where) {
+  for (const auto& other : s.wall_names)
+    if (other == name) fail(where, "wall name '" + name + "' is used twice");
+  s.walls.push_back(w);
+  s.wall_names.push_back(name);
+}
+
+void add_plane(SceneSpec& s, const Wall& proto, const Val& v, const std::string& name) {
+  const Map m(v, {"point", "normal"});
+  Wall w = proto;
+  w.kind = WallKind::plane;
+  w.point = vec3(m.get("point"));
+  w.normal = unit_vector(m.get("normal"));
+  add_wall(s, w, name, v);
+}
+
+// Six planes facing into the box.
+void add_box(SceneSpec& s, const Wall& proto, const Val& v, const std::string& name) {
+  Vec3d lo, hi;
+  box_corners(Map(v, {"min", "max"}), lo, hi);
+  const char* axis_name[3] = {"x", "y", "z"};
+  const Vec3d unit[3] = {Vec3d(1, 0, 0), Vec3d(0, 1, 0), Vec3d(0, 0, 1)};
+  for (int a = 0; a < 3; ++a) {
+    Wall w = proto;
+    w.kind = WallKind::plane;
+    w.point = lo;
+    w.normal = unit[a];
+    add_wall(s, w, name + "." + axis_name[a] + "min", v);
+    w.point = hi;
+    w.normal = Vec3d() - unit[a];  // not -unit[a], which would print -0
+    add_wall(s, w, name + "." + axis_name[a] + "max", v);
+  }
+}
+
+// The inside surface, plus end caps facing into the cylinder.
+void add_cylinder(SceneSpec& s, const Wall& proto, const Val& v, const std::string& name) {
+  const Map m(v, {"base", "axis", "radius", "length", "caps"});
+  Wall side = proto;
+  side.kind = WallKind::cylinder;
+  side.point = vec3(m.get("base"));
+  side.normal = unit_vector(m.get("axis"));
+  side.radius = positive(m.get("radius"));
+  side.length = positive(m.get("length"));
+  const std::string caps = m.has("caps") ? choice(m.get("caps"), {"none", "bottom", "top", "both"}) : "none";
+  add_wall(s, side, name, v);
+
+  Wall cap = proto;
+  cap.kind = WallKind::disk;
+  cap.radius = side.radius;
+  if (caps == "bottom" || caps == "both") {
+    cap.point = side.point;
+    cap.normal = side.normal;
+    add_wall(s, cap, name + ".bottom", v);
+  }
+  if (caps == "top" || caps == "both") {
+    cap.point = side.point + side.length * side.normal;
+    cap.normal = -side.normal;
+    add_wall(s, cap, name + ".top", v);
+  }
+}
+
+}  // namespace
+
+int material_index(const SceneSpec& s, const Val& v) {
+  const std::string name = text(v);
+  std::vector<std::string> known;
+  for (std::size_t m = 0; m < s.materials.size(); ++m) {
+    if (s.materials[m].name == name) return int(m);
+    known.push_back(s.materials[m].name);
+  }
+  fail(v, "unknown material '" + name + "'; defined materials: " + join(known));
+}
+
+void parse_walls(const Map& top, SceneSpec& s) {
+  const Val list = top.opt("walls");
+  if (!list.present()) return;
+  std::map<std::string, int> unnamed;  // per kind, for default names box, box2, ...
+  for_each_item(list, [&](const Val& item, std::size_t) {
+    const Map m(item, {"plane", "box", "cylinder", "name", "material", "motion"});
+    const std::string kind = m.one_of({"plane", "box", "cylinder"});
+    Wall proto;
+    proto.material = material_index(s, m.get("material"));
+    if (m.has("motion")) parse_motion(m.get("motion"), proto);
+    std::string name = kind;
+    if (m.has("name")) {
+      name = text(m.get("name"));
+    } else if (int n = ++unnamed[kind]; n > 1) {
+      name += std::to_string(n);
+    }
+    const Val shape = m.get(kind);
+    if (kind == "plane") add_plane(s, proto, shape, name);
+    if (kind == "box") add_box(s, proto, shape, name);
+    if (kind == "cylinder") add_cylinder(s, proto, shape, name);
+  });
+  if (s.walls.size() > std::size_t(kMaxWalls))
+    fail(list, "the entries expand to " + std::to_string(s.walls.size()) + " walls; at most " +
+                   std::to_string(kMaxWalls) + " are allowed (a box counts 6, a cylinder up to 3)");
+}
+
+}  // namespace scene_yaml
+}  // namespace gs

@@ -1,0 +1,42 @@
+#pragma once
+#include "core/vec3.hpp"
+
+namespace gs {
+
+enum class WallKind : int {
+  plane,    // infinite plane; particles live on the side `normal` points to
+  disk,     // plane bounded by a circle of `radius` around `point` (cylinder end caps)
+  cylinder  // inside surface of a finite cylinder: base centre `point`, unit axis `normal`
+};
+
+// One analytic wall as the kernels see it. Geometry is given in the wall's
+// reference pose (t = 0); the pose at the current time is a rotation about
+// `axis_point` followed by a shift, refreshed by the host every step.
+struct Wall {
+  WallKind kind = WallKind::plane;
+  int material = 0;
+  Vec3d point;         // plane/disk: a point on it; cylinder: centre of the base circle
+  Vec3d normal;        // plane/disk: unit normal into the particle side; cylinder: unit axis
+  double radius = 0;   // disk and cylinder radius [m]
+  double length = 0;   // cylinder length along the axis [m]
+
+  // Prescribed motion: translation at `velocity`, rotation at `angular_velocity`
+  // (rad/s, vector along the rotation axis) about `axis_point`.
+  Vec3d velocity;
+  Vec3d angular_velocity;
+  Vec3d axis_point;
+
+  // Current pose: x_world = rotation * (x_ref - axis_point) + axis_point + shift.
+  double rotation[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  Vec3d shift;
+};
+
+// What a wall contact needs to know about the touching sphere.
+struct WallContact {
+  double overlap;        // > 0 when in contact [m]
+  Vec3d normal;          // unit, from the wall towards the sphere centre
+  Vec3d point;           // contact point on the wall surface (world frame)
+  Vec3d wall_velocity;   // velocity of the wall surface at `point`
+};
+
+}  // namespace gs

@@ -1,0 +1,28 @@
+#include "walls/wall_motion.hpp"
+
+#include <cmath>
+
+namespace gs {
+
+void update_wall_pose(Wall& w, double time) {
+  w.shift = w.velocity * time;
+
+  double* R = w.rotation;  // row-major, R[3 * i + j] = R_ij
+  const double omega = norm(w.angular_velocity);
+  if (omega == 0) {
+    for (int i = 0; i < 9; ++i) R[i] = (i % 4 == 0) ? 1.0 : 0.0;
+    return;
+  }
+
+  // Rodrigues: R = cos(t) I + sin(t) [k]x + (1 - cos(t)) k k^T.
+  const Vec3d k = w.angular_velocity * (1.0 / omega);
+  const double angle = omega * time;
+  const double c = std::cos(angle);
+  const double s = std::sin(angle);
+  const double v = 1.0 - c;
+  R[0] = c + v * k.x * k.x;        R[1] = v * k.x * k.y - s * k.z;  R[2] = v * k.x * k.z + s * k.y;
+  R[3] = v * k.y * k.x + s * k.z;  R[4] = c + v * k.y * k.y;        R[5] = v * k.y * k.z - s * k.x;
+  R[6] = v * k.z * k.x - s * k.y;  R[7] = v * k.z * k.y + s * k.x;  R[8] = c + v * k.z * k.z;
+}
+
+}  // namespace gs

@@ -1,0 +1,74 @@
+#include <gtest/gtest.h>
+
+#include "support/support.hpp"
+
+#include <cstdlib>
+#include <sstream>
+
+namespace gs::test {
+
+std::vector<Backend> test_backends() {
+  std::vector<Backend> out;
+  if (const char* env = std::getenv("GS_TEST_BACKENDS")) {
+    std::stringstream ss(env);
+    std::string item;
+    while (std::getline(ss, item, ',')) out.push_back(parse_backend(item));
+    return out;
+  }
+  out.push_back(Backend::cpu);
+  if (cuda_device_available()) out.push_back(Backend::cuda);
+  return out;
+}
+
+std::string backend_label(const testing::TestParamInfo<Backend>& info) { return backend_name(info.param); }
+
+SceneSpec base_scene(double density, double stiffness, double restitution, double friction, ContactModel model) {
+  SceneSpec s;
+  s.path = "test";
+  s.domain_min = {-0.02, -0.02, -0.02};  // small: the cell grid spans the domain
+  s.domain_max = {0.02, 0.02, 0.02};
+  s.model = model;
+  s.precision = Precision::fp64;
+  MaterialSpec m;
+  m.name = "m";
+  m.density = density;
+  m.youngs_modulus = 1e7;
+  m.poisson_ratio = 0.3;
+  s.materials.push_back(m);
+  PairSpec p;
+  p.stiffness_normal = stiffness;
+  p.stiffness_tangential = stiffness * 2.0 / 7.0;
+  p.stiffness_rolling = stiffness * 2.0 / 7.0;
+  p.restitution = restitution;
+  p.friction = friction;
+  s.pairs.push_back(p);
+  s.duration = 1;
+  return s;
+}
+
+ParticleInit particle(ParticleId id, double radius, Vec3d position, Vec3d velocity) {
+  ParticleInit p;
+  p.id = id;
+  p.radius = radius;
+  p.position = position;
+  p.velocity = velocity;
+  return p;
+}
+
+Wall plane_wall(Vec3d point, Vec3d normal, int material) {
+  Wall w;
+  w.kind = WallKind::plane;
+  w.point = point;
+  w.normal = normal * (1.0 / norm(normal));
+  w.material = material;
+  return w;
+}
+
+double kinetic_energy(const ParticleSnapshot& s) {
+  double e = 0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    e += 0.5 * s.mass[i] * norm2(s.velocity[i]) + 0.5 * s.inertia[i] * norm2(s.angular_velocity[i]);
+  return e;
+}
+
+}  // namespace gs::test

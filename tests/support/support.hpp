@@ -1,0 +1,24 @@
+#pragma once
+// Shared helpers for tests: scenes built in code, the backends to test on.
+#include <string>
+#include <vector>
+
+#include "backend/backend.hpp"
+#include "engine/simulation.hpp"
+
+namespace gs::test {
+
+// Backends the suite runs on here: cpu always, cuda when a device is present
+// (GS_TEST_BACKENDS=cpu,cuda overrides).
+std::vector<Backend> test_backends();
+std::string backend_label(const testing::TestParamInfo<Backend>& info);
+
+// A scene with one material "m" (and pair m-m), a domain, no particles.
+SceneSpec base_scene(double density, double stiffness, double restitution, double friction = 0,
+                     ContactModel model = ContactModel::linear);
+ParticleInit particle(ParticleId id, double radius, Vec3d position, Vec3d velocity = {});
+Wall plane_wall(Vec3d point, Vec3d normal, int material = 0);
+
+double kinetic_energy(const ParticleSnapshot& s);  // translational + rotational
+
+}  // namespace gs::test
