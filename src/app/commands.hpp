@@ -5,7 +5,11 @@
 namespace gs {
 
 // Each returns the process exit code; bad input throws with a clear message.
-int command_run(const std::vector<std::string>& args);
+class Transport;
+int command_run(const std::vector<std::string>& args, Transport& transport);
 int command_check(const std::vector<std::string>& args);
+int command_info(const std::vector<std::string>& args);  // app/command_info.cpp
+
+std::string human_bytes(double bytes);  // "1.5 MiB"
 
 }  // namespace gs

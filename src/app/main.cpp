@@ -1,10 +1,14 @@
-// grainstorm command line: run and check scenes.
+// grainstorm command line: run and check scenes, describe output files.
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "app/commands.hpp"
+#include "comm/transport.hpp"
+#include "engine/simulation.hpp"
+#include "scene/scene.hpp"
 
 namespace {
 
@@ -13,12 +17,41 @@ const char* kUsage =
     "\n"
     "usage:\n"
     "  grainstorm run SCENE [--backend cpu|cuda] [--steps N] [--out DIR]\n"
-    "      run a scene; by default on the GPU when one is present, for the scene's duration\n"
+    "      run a scene; by default on the GPU when one is present, for the scene's duration;\n"
+    "      under mpirun/srun: one rank per GPU (or per CPU share with --backend cpu)\n"
     "  grainstorm check SCENE\n"
     "      validate a scene and print particle count, time step, contact time and memory estimate\n"
+    "  grainstorm info FILE.h5\n"
+    "      summarise an HDF5 snapshot or checkpoint: time, step, particles, fields, bounding box, scene hash\n"
     "  grainstorm --help | --version\n"
     "\n"
-    "The scene format is documented in docs/SCENES.md.\n";
+    "The scene format is documented in docs/SCENES.md, output files in docs/OUTPUT.md.\n";
+
+// Errors every rank meets together (a bad scene, a fault all ranks agreed on)
+// are reported once, by rank 0. Any other error is one rank's alone: it is
+// reported with the rank and every rank is stopped, so none waits forever.
+int run_on_every_rank(const std::vector<std::string>& args) {
+  std::unique_ptr<gs::Transport> transport;
+  try {
+    transport = gs::launched_by_mpi() ? gs::make_mpi_transport() : gs::make_single_transport();
+    return gs::command_run(args, *transport);
+  } catch (const gs::SceneError& e) {
+    if (!transport || transport->rank() == 0) std::fprintf(stderr, "grainstorm: error: %s\n", e.what());
+    return 1;
+  } catch (const gs::SimulationFault& e) {
+    if (!transport || transport->rank() == 0) std::fprintf(stderr, "grainstorm: run stopped: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    if (!transport || transport->size() == 1) {
+      std::fprintf(stderr, "grainstorm: error: %s\n", e.what());
+      return 1;
+    }
+    std::fprintf(stderr, "grainstorm: rank %d: error: %s (stopping every rank)\n", transport->rank(), e.what());
+    std::fflush(stderr);
+    transport->abort(1);
+    return 1;
+  }
+}
 
 }  // namespace
 
@@ -32,9 +65,10 @@ int main(int argc, char** argv) {
     std::printf("grainstorm %s\n", GS_VERSION);
     return 0;
   }
+  if (args[0] == "run") return run_on_every_rank(args);
   try {
-    if (args[0] == "run") return gs::command_run(args);
     if (args[0] == "check") return gs::command_check(args);
+    if (args[0] == "info") return gs::command_info(args);
     std::fprintf(stderr, "grainstorm: unknown command '%s'\n\n%s", args[0].c_str(), kUsage);
     return 2;
   } catch (const std::exception& e) {

@@ -32,6 +32,17 @@ bool cuda_device_available() {
 #endif
 }
 
+void select_cuda_device(int local_rank) {
+#ifdef GS_HAVE_CUDA
+  int count = 0;
+  GS_CUDA_CHECK(cudaGetDeviceCount(&count));
+  if (count == 0) throw std::runtime_error("no CUDA device to bind local rank " + std::to_string(local_rank) + " to");
+  GS_CUDA_CHECK(cudaSetDevice(local_rank % count));
+#else
+  (void)local_rank;
+#endif
+}
+
 Backend default_backend() { return cuda_device_available() ? Backend::cuda : Backend::cpu; }
 
 }  // namespace gs

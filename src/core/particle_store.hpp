@@ -50,6 +50,24 @@ struct ParticleStore {
   DeviceArray<Quaternion> orientation;
 
   Index size() const { return n_owned + n_ghost; }
+
+  // Sets the length of every array (contents up to min(old, n) are kept).
+  void resize_arrays(std::size_t n) {
+    id.resize(n);
+    material.resize(n);
+    marker.resize(n);
+    radius.resize(n);
+    mass.resize(n);
+    inertia.resize(n);
+    position.resize(n);
+    velocity.resize(n);
+    angular_velocity.resize(n);
+    orientation.resize(n);
+  }
+  void drop_ghosts() {
+    n_ghost = 0;
+    resize_arrays(std::size_t(n_owned));
+  }
 };
 
 }  // namespace gs

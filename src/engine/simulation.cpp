@@ -29,7 +29,8 @@ std::vector<T> permuted(const std::vector<T>& v, const std::vector<std::size_t>&
 
 }  // namespace
 
-Simulation::Simulation(const SceneSpec& scene, const RunOptions& options) : scene_(scene), options_(options) {
+Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::shared_ptr<RankExchange> exchange)
+    : scene_(scene), options_(options), exchange_(std::move(exchange)) {
   const Backend b = options.backend;
   store_.backend = b;
   for (auto* a : {&store_.radius, &store_.mass, &store_.inertia}) *a = DeviceArray<float>(b);
@@ -45,7 +46,15 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options) : scen
   walls_ = scene.walls;
   for (const Wall& w : walls_) walls_move_ = walls_move_ || norm2(w.velocity) > 0 || norm2(w.angular_velocity) > 0;
   move_walls(0.0);
-  upload(scene.particles);
+  if (exchange_) {
+    std::vector<ParticleInit> mine;
+    for (const ParticleInit& p : scene.particles)
+      if (exchange_->owns(p.position)) mine.push_back(p);
+    upload(mine);
+    exchange_->refresh_ghosts(store_, *kernels_);
+  } else {
+    upload(scene.particles);
+  }
 
   // Forces at t = 0 for the first half kick.
   rebuild_cells();
@@ -103,20 +112,31 @@ void Simulation::run(long long steps) {
     p.step = step_ + 1;
     kernels_->kick_drift(store_, p);
     if (walls_move_) move_walls(time_ + dt);
-    auto t1 = std::chrono::steady_clock::now();
-    timings_.integrate += std::chrono::duration<double>(t1 - t0).count();
-    rebuild_cells();
+    timings_.integrate += seconds_since(t0);
+    if (exchange_) step_particles_between_ranks();
+
+    t0 = std::chrono::steady_clock::now();
     if (options_.reorder_interval > 0 && (step_ + 1) % options_.reorder_interval == 0) {
-      kernels_->reorder_by_cells(store_);
+      store_.drop_ghosts();
       rebuild_cells();
+      kernels_->reorder_by_cells(store_);
     }
-    auto t2 = std::chrono::steady_clock::now();
-    timings_.neighbours += std::chrono::duration<double>(t2 - t1).count();
+    timings_.neighbours += seconds_since(t0);
+    if (exchange_) {
+      t0 = std::chrono::steady_clock::now();
+      exchange_->refresh_ghosts(store_, *kernels_);
+      timings_.exchange += seconds_since(t0);
+    }
+    t0 = std::chrono::steady_clock::now();
+    rebuild_cells();
+    timings_.neighbours += seconds_since(t0);
+
+    t0 = std::chrono::steady_clock::now();
     kernels_->compute_forces(store_, dt, p.step);
-    auto t3 = std::chrono::steady_clock::now();
-    timings_.forces += std::chrono::duration<double>(t3 - t2).count();
+    timings_.forces += seconds_since(t0);
+    t0 = std::chrono::steady_clock::now();
     kernels_->kick(store_, dt, scene_.gravity);
-    timings_.integrate += seconds_since(t3);
+    timings_.integrate += seconds_since(t0);
     ++step_;
     time_ = double(step_) * dt;
     if (options_.fault_check_interval > 0 && step_ % options_.fault_check_interval == 0) check_fault();
@@ -124,11 +144,22 @@ void Simulation::run(long long steps) {
   check_fault();
 }
 
+// Migration every step, a load-balance check every rebalance_interval steps.
+void Simulation::step_particles_between_ranks() {
+  const auto t0 = std::chrono::steady_clock::now();
+  const long long next = step_ + 1;
+  const bool balance = options_.rebalance_interval > 0 && next % options_.rebalance_interval == 0;
+  if (!(balance && exchange_->rebalance(store_, *kernels_))) exchange_->migrate(store_, *kernels_);
+  timings_.exchange += seconds_since(t0);
+}
+
 void Simulation::check_fault() {
   const Fault f = kernels_->take_fault();
-  if (f.code == kFaultNone) return;
-  throw SimulationFault("step " + std::to_string(f.step) + ": particle " + std::to_string(f.particle) + ": " +
-                        fault_cause(f.code));
+  std::string message;
+  if (f.code != kFaultNone)
+    message = "step " + std::to_string(f.step) + ": particle " + std::to_string(f.particle) + ": " + fault_cause(f.code);
+  if (exchange_) message = exchange_->first_fault(message);
+  if (!message.empty()) throw SimulationFault(message);
 }
 
 ParticleSnapshot Simulation::snapshot() const {

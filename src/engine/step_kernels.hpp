@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/fault.hpp"
+#include "core/particle_records.hpp"
 #include "core/particle_store.hpp"
 #include "integrate/velocity_verlet.hpp"
 #include "neighbor/cell_grid.hpp"
@@ -14,17 +15,8 @@
 
 namespace gs {
 
-// Contact history of particles on the host, in fp64, for checkpoints and
-// migration: entry (particle p, slot s) at p * slots + s.
-struct HostHistory {
-  int slots = 0;
-  std::vector<ParticleId> partner;
-  std::vector<Vec3d> tangential;
-  std::vector<Vec3d> rolling;
-};
-
 struct StepTimings {
-  double integrate = 0, neighbours = 0, forces = 0;
+  double integrate = 0, neighbours = 0, forces = 0, exchange = 0;
 };
 
 class StepKernels {
@@ -51,6 +43,17 @@ class StepKernels {
   virtual std::vector<Vec3d> torques(const ParticleStore& s) const = 0;
   virtual HostHistory history(const ParticleStore& s) const = 0;
   virtual void set_history(const ParticleStore& s, const HostHistory& h) = 0;
+
+  // Data movement between ranks (comm/). Host copies of particles `which`
+  // (store indices), with their contact history when `with_history`.
+  virtual ParticleRecords export_particles(const ParticleStore& s, const std::vector<Index>& which,
+                                           bool with_history) const = 0;
+  // Keeps the owned particles `keep`, in that order, as [0, keep.size());
+  // drops every ghost.
+  virtual void keep_owned(ParticleStore& s, const std::vector<Index>& keep) = 0;
+  // Appends particles after the current ones: as owned particles with their
+  // history (only while there are no ghosts), or as ghosts.
+  virtual void append(ParticleStore& s, const ParticleRecords& r, bool as_ghosts) = 0;
 
   virtual std::size_t bytes() const = 0;  // memory held by forces, history and cell list
 };

@@ -98,6 +98,10 @@ class StepKernelsImpl final : public StepKernels {
     return widen(forces_.torque, s.n_owned);
   }
   HostHistory history(const ParticleStore& s) const override;
+  ParticleRecords export_particles(const ParticleStore& s, const std::vector<Index>& which,
+                                   bool with_history) const override;
+  void keep_owned(ParticleStore& s, const std::vector<Index>& keep) override;
+  void append(ParticleStore& s, const ParticleRecords& r, bool as_ghosts) override;
   void set_history(const ParticleStore& s, const HostHistory& h) override;
 
   std::size_t bytes() const override {
@@ -137,3 +141,4 @@ class StepKernelsImpl final : public StepKernels {
 }  // namespace gs
 
 #include "engine/step_kernels_impl_detail.hpp"
+#include "engine/step_kernels_transfer.hpp"

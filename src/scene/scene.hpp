@@ -48,6 +48,15 @@ struct OutputSpec {
   std::string directory = "out";
 };
 
+enum class DecompositionMethod { slabs, metis };
+
+// How a run on several ranks splits space (ignored on one rank).
+struct DecompositionSpec {
+  DecompositionMethod method = DecompositionMethod::slabs;
+  int axis = -1;                      // slabs: 0, 1, 2, or -1 for the longest loaded extent
+  double rebalance_threshold = 1.2;   // re-partition when max/mean particles per rank exceeds this
+};
+
 struct SceneSpec {
   std::string path;                  // file it came from, for messages
   Vec3d domain_min, domain_max;      // particles must stay inside [m]
@@ -65,6 +74,7 @@ struct SceneSpec {
   double duration = 0;               // simulated time [s]
   OutputSpec output;
   int contact_slots = 12;            // history slots per particle
+  DecompositionSpec decomposition;
 };
 
 }  // namespace gs

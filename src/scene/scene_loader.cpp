@@ -17,7 +17,23 @@ namespace {
 
 const std::vector<std::string> kTopKeys = {"domain",    "gravity", "contact_model", "precision",     "effects",
                                            "materials", "pairs",   "particles",     "walls",         "time_step",
-                                           "duration",  "output",  "contact_slots"};
+                                           "duration",  "output",  "contact_slots", "decomposition"};
+
+void parse_decomposition(const Map& m, SceneSpec& s) {
+  DecompositionSpec& d = s.decomposition;
+  if (m.has("method"))
+    d.method = choice(m.get("method"), {"slabs", "metis"}) == "slabs" ? DecompositionMethod::slabs
+                                                                     : DecompositionMethod::metis;
+  if (m.has("axis")) {
+    const std::string a = choice(m.get("axis"), {"auto", "x", "y", "z"});
+    d.axis = a == "auto" ? -1 : a[0] - 'x';
+  }
+  if (m.has("rebalance_threshold")) {
+    const Val t = m.get("rebalance_threshold");
+    d.rebalance_threshold = number(t);
+    if (!(d.rebalance_threshold >= 1)) fail(t, "must be >= 1 (max / mean particles per rank), got " + str(d.rebalance_threshold));
+  }
+}
 
 void parse_globals(const Map& top, SceneSpec& s) {
   box_corners(Map(top.get("domain"), {"min", "max"}), s.domain_min, s.domain_max);
@@ -41,6 +57,7 @@ void parse_globals(const Map& top, SceneSpec& s) {
     if (o.has("directory")) s.output.directory = text(o.get("directory"));
   }
   if (top.has("contact_slots")) s.contact_slots = int(integer(top.get("contact_slots"), 1, kMaxContactSlots));
+  if (top.has("decomposition")) parse_decomposition(Map(top.get("decomposition"), {"method", "axis", "rebalance_threshold"}), s);
 }
 
 void parse_materials(const Map& top, SceneSpec& s) {

@@ -2,6 +2,7 @@
 
 #include "support/support.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <sstream>
 
@@ -69,6 +70,10 @@ double kinetic_energy(const ParticleSnapshot& s) {
   for (std::size_t i = 0; i < s.size(); ++i)
     e += 0.5 * s.mass[i] * norm2(s.velocity[i]) + 0.5 * s.inertia[i] * norm2(s.angular_velocity[i]);
   return e;
+}
+
+double stored_sphere_mass(double radius, double density) {
+  return double(float(4.0 / 3.0 * M_PI * radius * radius * radius * density));
 }
 
 }  // namespace gs::test

@@ -21,4 +21,7 @@ Wall plane_wall(Vec3d point, Vec3d normal, int material = 0);
 
 double kinetic_energy(const ParticleSnapshot& s);  // translational + rotational
 
+// Mass of a sphere as the particle store keeps it (fp32, like radius and inertia).
+double stored_sphere_mass(double radius, double density);
+
 }  // namespace gs::test

@@ -1,0 +1,169 @@
+#include "comm/domain_exchange.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <stdexcept>
+
+#include "comm/records_codec.hpp"
+#include "decomposition/metis_decomposition.hpp"
+#include "decomposition/slab_decomposition.hpp"
+
+namespace gs {
+namespace {
+
+class Stopwatch {
+ public:
+  explicit Stopwatch(double& total) : total_(total) {}
+  ~Stopwatch() { total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+std::vector<Vec3d> owned_positions(const ParticleStore& s) {
+  std::vector<Vec3d> x = s.position.to_host();
+  x.resize(std::size_t(s.n_owned));
+  return x;
+}
+
+double interaction_range(const SceneSpec& scene) {
+  double r = 0;
+  for (const ParticleInit& p : scene.particles) r = std::max(r, p.radius);
+  return 2 * r;
+}
+
+}  // namespace
+
+DomainExchange::DomainExchange(Transport& transport, std::unique_ptr<Decomposition> decomposition, double halo,
+                               const DecompositionSpec& spec)
+    : transport_(transport), decomposition_(std::move(decomposition)), halo_(halo), spec_(spec) {
+  if (decomposition_->n_ranks() != transport_.size())
+    throw std::logic_error("decomposition and transport disagree on the number of ranks");
+  peers_ = decomposition_->neighbours(rank());
+}
+
+std::vector<int> DomainExchange::all_other_ranks() const {
+  std::vector<int> r;
+  for (int k = 0; k < ranks(); ++k)
+    if (k != rank()) r.push_back(k);
+  return r;
+}
+
+// Packs lists[p] for peers[p], swaps with every peer, unpacks what arrived.
+std::vector<ParticleRecords> DomainExchange::trade(StepKernels& k, const ParticleStore& s,
+                                                   const std::vector<int>& peers,
+                                                   const std::vector<std::vector<Index>>& lists, bool with_history) {
+  std::vector<Bytes> send(peers.size()), recv;
+  for (std::size_t p = 0; p < peers.size(); ++p)
+    if (!lists[p].empty()) encode_records(k.export_particles(s, lists[p], with_history), send[p]);
+  transport_.exchange(peers, send, recv);
+  std::vector<ParticleRecords> arrived;
+  for (const Bytes& b : recv) arrived.push_back(decode_records(b));
+  return arrived;
+}
+
+void DomainExchange::send_to_owners(ParticleStore& s, StepKernels& k, const std::vector<int>& peers) {
+  s.drop_ghosts();
+  const std::vector<Vec3d> x = owned_positions(s);
+  std::vector<Index> keep;
+  keep.reserve(x.size());
+  std::vector<std::vector<Index>> leave(peers.size());
+  for (Index i = 0; i < s.n_owned; ++i) {
+    const int owner = decomposition_->owner(x[std::size_t(i)]);
+    if (owner == rank()) {
+      keep.push_back(i);
+      continue;
+    }
+    const auto it = std::lower_bound(peers.begin(), peers.end(), owner);
+    if (it == peers.end() || *it != owner)
+      throw std::runtime_error("a particle moved from rank " + std::to_string(rank()) + " to rank " +
+                               std::to_string(owner) + ", which is not a neighbour (it moved too far in one step)");
+    leave[std::size_t(it - peers.begin())].push_back(i);
+  }
+  std::vector<ParticleRecords> arrived = trade(k, s, peers, leave, true);
+  if (keep.size() != std::size_t(s.n_owned)) k.keep_owned(s, keep);
+  for (const ParticleRecords& r : arrived)
+    if (r.size() > 0) k.append(s, r, false);
+}
+
+void DomainExchange::migrate(ParticleStore& s, StepKernels& k) {
+  Stopwatch watch(seconds_);
+  send_to_owners(s, k, peers_);
+}
+
+void DomainExchange::refresh_ghosts(ParticleStore& s, StepKernels& k) {
+  Stopwatch watch(seconds_);
+  s.drop_ghosts();
+  const std::vector<Vec3d> x = owned_positions(s);
+  std::vector<std::vector<Index>> lists(peers_.size());
+  std::vector<int> near;
+  for (Index i = 0; i < s.n_owned; ++i) {
+    near.clear();
+    decomposition_->ranks_near(x[std::size_t(i)], halo_, rank(), near);
+    for (int r : near) {
+      const auto it = std::lower_bound(peers_.begin(), peers_.end(), r);
+      if (it == peers_.end() || *it != r) throw std::logic_error("ghost for a rank that is not a neighbour");
+      lists[std::size_t(it - peers_.begin())].push_back(i);
+    }
+  }
+  for (const ParticleRecords& r : trade(k, s, peers_, lists, false))
+    if (r.size() > 0) k.append(s, r, true);
+}
+
+bool DomainExchange::rebalance(ParticleStore& s, StepKernels& k) {
+  if (ranks() == 1) return false;
+  Stopwatch watch(seconds_);
+  std::vector<std::int64_t> loads(std::size_t(ranks()), 0);
+  loads[std::size_t(rank())] = s.n_owned;
+  transport_.sum(loads);
+  if (load_imbalance(loads) <= spec_.rebalance_threshold) return false;
+
+  const std::vector<Vec3d> x = owned_positions(s);
+  const CoarseGrid& grid = decomposition_->grid();
+  if (auto* slabs = dynamic_cast<SlabDecomposition*>(decomposition_.get())) {
+    Histogram h = layer_histogram(grid, slabs->axis(), x);
+    transport_.sum(h);
+    slabs->rebalance(h);
+  } else if (auto* metis = dynamic_cast<MetisDecomposition*>(decomposition_.get())) {
+    Histogram h = cell_histogram(grid, x);
+    transport_.sum(h);
+    metis->rebalance(h);
+  }
+  peers_ = decomposition_->neighbours(rank());
+  send_to_owners(s, k, all_other_ranks());
+  return true;
+}
+
+std::string DomainExchange::first_fault(const std::string& local) {
+  const int first = transport_.min(local.empty() ? INT_MAX : rank());
+  if (first == INT_MAX) return "";
+  const Bytes text = transport_.broadcast(Bytes(local.begin(), local.end()), first);
+  return "rank " + std::to_string(first) + ": " + std::string(text.begin(), text.end());
+}
+
+long long DomainExchange::total(long long local) {
+  std::vector<std::int64_t> v{local};
+  transport_.sum(v);
+  return v[0];
+}
+
+std::shared_ptr<DomainExchange> make_domain_exchange(const SceneSpec& scene, Transport& transport) {
+  std::vector<Vec3d> x;
+  x.reserve(scene.particles.size());
+  for (const ParticleInit& p : scene.particles) x.push_back(p.position);
+  const double range = interaction_range(scene);
+  const DecompositionSpec& spec = scene.decomposition;
+  std::unique_ptr<Decomposition> d;
+  if (spec.method == DecompositionMethod::metis) {
+    d = std::make_unique<MetisDecomposition>(MetisDecomposition::from_positions(
+        scene.domain_min, scene.domain_max, range, transport.size(), x));
+  } else {
+    d = std::make_unique<SlabDecomposition>(SlabDecomposition::from_positions(
+        scene.domain_min, scene.domain_max, range, transport.size(), spec.axis, x));
+  }
+  return std::make_shared<DomainExchange>(transport, std::move(d), range, spec);
+}
+
+}  // namespace gs

@@ -1,0 +1,53 @@
+#pragma once
+// RankExchange over a Transport and a Decomposition: migration of particles
+// (with contact history) to their owners, ghost copies for the neighbours,
+// re-balancing, and agreement on faults. Particles are packed and unpacked by
+// the backend's kernels (StepKernels::export_particles / append); only the
+// choice of who goes where is made on the host, from owned positions.
+#include <memory>
+
+#include "comm/transport.hpp"
+#include "decomposition/decomposition.hpp"
+#include "engine/rank_exchange.hpp"
+#include "scene/scene.hpp"
+
+namespace gs {
+
+class DomainExchange final : public RankExchange {
+ public:
+  // halo: interaction range (the largest particle diameter).
+  DomainExchange(Transport& transport, std::unique_ptr<Decomposition> decomposition, double halo,
+                 const DecompositionSpec& spec);
+
+  int rank() const override { return transport_.rank(); }
+  int ranks() const override { return transport_.size(); }
+  bool owns(const Vec3d& x) const override { return decomposition_->owner(x) == rank(); }
+  void migrate(ParticleStore& s, StepKernels& k) override;
+  void refresh_ghosts(ParticleStore& s, StepKernels& k) override;
+  bool rebalance(ParticleStore& s, StepKernels& k) override;
+  std::string first_fault(const std::string& local) override;
+  long long total(long long local) override;
+  std::string describe() const override { return decomposition_->describe(); }
+  double seconds() const override { return seconds_; }
+
+  const Decomposition& decomposition() const { return *decomposition_; }
+
+ private:
+  void send_to_owners(ParticleStore& s, StepKernels& k, const std::vector<int>& peers);
+  std::vector<ParticleRecords> trade(StepKernels& k, const ParticleStore& s, const std::vector<int>& peers,
+                                     const std::vector<std::vector<Index>>& lists, bool with_history);
+  std::vector<int> all_other_ranks() const;
+
+  Transport& transport_;
+  std::unique_ptr<Decomposition> decomposition_;
+  double halo_;
+  DecompositionSpec spec_;
+  std::vector<int> peers_;  // neighbours of this rank, ascending
+  double seconds_ = 0;
+};
+
+// Partitions the scene's particles over the transport's ranks (every rank
+// computes the same partition from the same scene).
+std::shared_ptr<DomainExchange> make_domain_exchange(const SceneSpec& scene, Transport& transport);
+
+}  // namespace gs

@@ -1,0 +1,80 @@
+#include "comm/snapshot_gather.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <numeric>
+#include <stdexcept>
+
+namespace gs {
+namespace {
+
+// Each field of a snapshot, visited in one fixed order for packing and unpacking.
+template <class F>
+void for_each_field(ParticleSnapshot& s, F&& f) {
+  f(s.id);
+  f(s.material);
+  f(s.marker);
+  f(s.radius);
+  f(s.mass);
+  f(s.inertia);
+  f(s.position);
+  f(s.velocity);
+  f(s.angular_velocity);
+  f(s.force);
+  f(s.torque);
+  f(s.orientation);
+}
+
+Bytes pack(ParticleSnapshot s) {
+  Bytes out;
+  for_each_field(s, [&](auto& v) {
+    const std::uint64_t n = v.size();
+    const std::size_t at = out.size(), bytes = n * sizeof(v[0]);
+    out.resize(at + sizeof(n) + bytes);
+    std::memcpy(out.data() + at, &n, sizeof(n));
+    if (bytes > 0) std::memcpy(out.data() + at + sizeof(n), v.data(), bytes);
+  });
+  return out;
+}
+
+void unpack_append(const Bytes& in, ParticleSnapshot& into) {
+  std::size_t at = 0;
+  for_each_field(into, [&](auto& v) {
+    std::uint64_t n = 0;
+    if (at + sizeof(n) > in.size()) throw std::runtime_error("snapshot message truncated");
+    std::memcpy(&n, in.data() + at, sizeof(n));
+    at += sizeof(n);
+    const std::size_t old = v.size(), bytes = n * sizeof(v[0]);
+    if (at + bytes > in.size()) throw std::runtime_error("snapshot message truncated");
+    v.resize(old + n);
+    if (bytes > 0) std::memcpy(v.data() + old, in.data() + at, bytes);
+    at += bytes;
+  });
+}
+
+template <class T>
+void permute(std::vector<T>& v, const std::vector<std::size_t>& order) {
+  if (v.empty()) return;
+  std::vector<T> out(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) out[k] = v[order[k]];
+  v.swap(out);
+}
+
+}  // namespace
+
+ParticleSnapshot gather_snapshot(Transport& transport, const ParticleSnapshot& local) {
+  if (transport.size() == 1) return local;
+  const std::vector<Bytes> parts = transport.gather(pack(local));
+  ParticleSnapshot all;
+  all.time = local.time;
+  all.step = local.step;
+  if (transport.rank() != 0) return all;
+  for (const Bytes& b : parts) unpack_append(b, all);
+  std::vector<std::size_t> order(all.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all.id[a] < all.id[b]; });
+  for_each_field(all, [&](auto& v) { permute(v, order); });
+  return all;
+}
+
+}  // namespace gs

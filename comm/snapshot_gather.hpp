@@ -1,0 +1,12 @@
+#pragma once
+// Every rank's owned particles in one snapshot on rank 0, sorted by id (for
+// output: the files of a run do not depend on the number of ranks).
+#include "comm/transport.hpp"
+#include "engine/simulation.hpp"
+
+namespace gs {
+
+// Collective. Rank 0 gets the whole snapshot; other ranks an empty one.
+ParticleSnapshot gather_snapshot(Transport& transport, const ParticleSnapshot& local);
+
+}  // namespace gs

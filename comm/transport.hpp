@@ -1,0 +1,41 @@
+#pragma once
+// How ranks talk: byte buffers between neighbours, small collectives. Two
+// implementations: one rank (no MPI), and MPI over host buffers (CPU ranks,
+// and GPU ranks staging through the host).
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace gs {
+
+using Bytes = std::vector<char>;
+
+class Transport {
+ public:
+  virtual ~Transport() = default;
+  virtual int rank() const = 0;
+  virtual int size() const = 0;
+  // Rank among the ranks of this host (selects the GPU).
+  virtual int local_rank() const = 0;
+
+  // Sends send[k] to peers[k] and receives recv[k] from peers[k]. Every rank
+  // lists the same pairs (a in b's peers iff b in a's). Collective over peers.
+  virtual void exchange(const std::vector<int>& peers, const std::vector<Bytes>& send, std::vector<Bytes>& recv) = 0;
+  virtual void sum(std::vector<std::int64_t>& values) = 0;  // all-reduce, in place
+  virtual int min(int value) = 0;                           // all-reduce
+  // Every rank's bytes in rank order on rank 0; empty elsewhere.
+  virtual std::vector<Bytes> gather(const Bytes& local) = 0;
+  virtual Bytes broadcast(const Bytes& data, int root) = 0;
+  // Ends every rank at once (a failure no collective can report).
+  [[noreturn]] virtual void abort(int code) = 0;
+};
+
+// One rank, no MPI.
+std::unique_ptr<Transport> make_single_transport();
+// MPI_COMM_WORLD; initialises MPI on first use and finalises it at exit.
+std::unique_ptr<Transport> make_mpi_transport();
+// True when this process was started by mpirun/mpiexec/srun with more than one rank.
+bool launched_by_mpi();
+
+}  // namespace gs

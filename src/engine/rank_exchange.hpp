@@ -1,0 +1,39 @@
+#pragma once
+// What a run split over several ranks needs from comm/: ownership, migration,
+// ghosts, load balance and agreement on faults. The engine sees only this
+// interface, so it depends on no transport (comm/ implements it over MPI).
+#include <string>
+
+#include "core/particle_store.hpp"
+#include "engine/step_kernels.hpp"
+
+namespace gs {
+
+class RankExchange {
+ public:
+  virtual ~RankExchange() = default;
+
+  virtual int rank() const = 0;
+  virtual int ranks() const = 0;
+  virtual bool owns(const Vec3d& x) const = 0;
+
+  // Owned particles that left this rank's region go, with their contact
+  // history, to their new owners; arrivals are appended. Drops the ghosts.
+  virtual void migrate(ParticleStore& s, StepKernels& k) = 0;
+  // Replaces the ghosts with copies of the neighbours' particles that lie
+  // within interaction range of this rank's region.
+  virtual void refresh_ghosts(ParticleStore& s, StepKernels& k) = 0;
+  // Collective. Re-partitions when the load imbalance (max / mean particles
+  // per rank) exceeds the scene's threshold, and migrates; true if it did.
+  virtual bool rebalance(ParticleStore& s, StepKernels& k) = 0;
+  // Collective: the fault of the lowest failing rank, as "rank R: message",
+  // or "" when no rank failed.
+  virtual std::string first_fault(const std::string& local) = 0;
+  // Collective: particles on all ranks.
+  virtual long long total(long long local) = 0;
+
+  virtual std::string describe() const = 0;  // partition and imbalance, for the log
+  virtual double seconds() const = 0;        // wall time spent exchanging so far
+};
+
+}  // namespace gs

@@ -1,0 +1,150 @@
+#include "io/checkpoint.hpp"
+
+#include <cstdio>
+
+#include "io/atomic_file.hpp"
+#include "io/fnv1a.hpp"
+#include "io/h5_io.hpp"
+#include "io/h5_walls.hpp"
+
+namespace gs {
+namespace {
+
+void require_length(std::size_t actual, std::size_t expected, const char* field, const std::string& path) {
+  if (actual != expected)
+    throw std::invalid_argument("write_checkpoint " + path + ": " + field + " has " + std::to_string(actual) +
+                                " values, expected " + std::to_string(expected));
+}
+
+void validate(const Checkpoint& c, const std::string& path) {
+  const ParticleSnapshot& p = c.particles;
+  const std::size_t n = p.size();
+  require_length(p.material.size(), n, "material", path);
+  require_length(p.marker.size(), n, "marker", path);
+  require_length(p.radius.size(), n, "radius", path);
+  require_length(p.mass.size(), n, "mass", path);
+  require_length(p.inertia.size(), n, "inertia", path);
+  require_length(p.position.size(), n, "position", path);
+  require_length(p.velocity.size(), n, "velocity", path);
+  require_length(p.angular_velocity.size(), n, "angular_velocity", path);
+  require_length(p.orientation.size(), n, "orientation", path);
+  require_length(p.force.size(), n, "force", path);
+  require_length(p.torque.size(), n, "torque", path);
+  const HostHistory& h = c.history;
+  if (h.slots < 0 || h.slots > kMaxContactSlots)
+    throw std::invalid_argument("write_checkpoint " + path + ": history has " + std::to_string(h.slots) + " slots");
+  const std::size_t entries = n * std::size_t(h.slots);
+  require_length(h.partner.size(), entries, "history partner", path);
+  if (!h.tangential.empty()) require_length(h.tangential.size(), entries, "history tangential", path);
+  if (!h.rolling.empty()) require_length(h.rolling.size(), entries, "history rolling", path);
+}
+
+void write_particles(const h5::File& f, const ParticleSnapshot& p) {
+  h5::create_group(f, "particles");
+  h5::write_attribute(f, "particles", "time", p.time);
+  h5::write_attribute(f, "particles", "step", std::int64_t(p.step));
+  h5::write_vector(f, "particles/id", p.id);
+  h5::write_vector(f, "particles/material", p.material);
+  h5::write_vector(f, "particles/marker", p.marker);
+  h5::write_vector(f, "particles/radius", p.radius);
+  h5::write_vector(f, "particles/mass", p.mass);
+  h5::write_vector(f, "particles/inertia", p.inertia);
+  h5::write_vec3(f, "particles/position", p.position);
+  h5::write_vec3(f, "particles/velocity", p.velocity);
+  h5::write_vec3(f, "particles/angular_velocity", p.angular_velocity);
+  h5::write_quaternions(f, "particles/orientation", p.orientation);
+  h5::write_vec3(f, "particles/force", p.force);
+  h5::write_vec3(f, "particles/torque", p.torque);
+}
+
+void write_history(const h5::File& f, const HostHistory& h, std::size_t n) {
+  h5::create_group(f, "history");
+  h5::write_attribute(f, "history", "slots", std::int32_t(h.slots));
+  h5::write_array(f, "history/partner", h.partner.data(), {hsize_t(n), hsize_t(h.slots)});
+  h5::write_vec3(f, "history/tangential", h.tangential);
+  h5::write_vec3(f, "history/rolling", h.rolling);
+}
+
+void write_decomposition(const h5::File& f, const Checkpoint& c) {
+  h5::create_group(f, "decomposition");
+  h5::write_attribute(f, "decomposition", "rank_count", std::int32_t(c.rank_count));
+  h5::write_attribute(f, "decomposition", "axis", std::int32_t(c.decomposition_axis));
+  h5::write_vector(f, "decomposition/cuts", c.decomposition_cuts);
+}
+
+}  // namespace
+
+std::string checkpoint_h5_name(long long step) {
+  char name[64];
+  std::snprintf(name, sizeof(name), "checkpoint_%010lld.h5", step);
+  return name;
+}
+
+std::uint64_t checkpoint_checksum(const Checkpoint& c) {
+  const ParticleSnapshot& p = c.particles;
+  const HostHistory& h = c.history;
+  Fnv1a64 sum;
+  sum.add_value(std::int32_t(kCheckpointFormatVersion));
+  sum.add_value(std::int64_t(c.step));
+  sum.add_value(c.time);
+  sum.add_value(std::int64_t(p.step));
+  sum.add_value(p.time);
+  sum.add_value(c.scene_hash);
+  sum.add_value(std::int32_t(c.rank_count));
+  sum.add_value(std::int32_t(c.decomposition_axis));
+  sum.add_value(c.random_state);
+  sum.add_value(std::uint64_t(p.size()));
+  sum.add_value(std::int32_t(h.slots));
+  sum.add_value(std::uint64_t(h.tangential.size()));
+  sum.add_value(std::uint64_t(h.rolling.size()));
+  sum.add_value(std::uint64_t(c.walls.size()));
+  sum.add_value(std::uint64_t(c.decomposition_cuts.size()));
+  sum.add_array(p.id);
+  sum.add_array(p.material);
+  sum.add_array(p.marker);
+  sum.add_array(p.radius);
+  sum.add_array(p.mass);
+  sum.add_array(p.inertia);
+  sum.add_array(p.position);
+  sum.add_array(p.velocity);
+  sum.add_array(p.angular_velocity);
+  sum.add_array(p.orientation);
+  sum.add_array(p.force);
+  sum.add_array(p.torque);
+  sum.add_array(h.partner);
+  sum.add_array(h.tangential);
+  sum.add_array(h.rolling);
+  for (const Wall& w : c.walls) {
+    const auto state = wall_state(w);
+    sum.add(state.data(), sizeof(state));
+  }
+  sum.add_array(c.decomposition_cuts);
+  return sum.value();
+}
+
+void write_checkpoint(const std::string& path, const Checkpoint& c) {
+  validate(c, path);
+  const std::uint64_t checksum = checkpoint_checksum(c);
+  write_atomically(path, [&](const std::string& temporary) {
+    h5::File f = h5::File::create(temporary);
+    h5::write_string_attribute(f, "/", "kind", "grainstorm checkpoint");
+    h5::write_attribute(f, "/", "format_version", std::int32_t(kCheckpointFormatVersion));
+    h5::write_string_attribute(f, "/", "grainstorm_version", GS_VERSION);
+    h5::write_attribute(f, "/", "step", std::int64_t(c.step));
+    h5::write_attribute(f, "/", "time", c.time);
+    h5::write_attribute(f, "/", "scene_hash", c.scene_hash);
+    h5::write_attribute(f, "/", "random_state", c.random_state);
+    h5::write_attribute(f, "/", "particle_count", std::int64_t(c.particles.size()));
+    h5::write_string_attribute(f, "/", "units", "SI: m, kg, s, N, rad");
+    write_particles(f, c.particles);
+    write_history(f, c.history, c.particles.size());
+    write_walls(f, "walls", c.walls, {});
+    write_decomposition(f, c);
+    h5::write_attribute(f, "/", "checksum", checksum);
+    // Last: a file without the marker was not finished.
+    h5::write_attribute(f, "/", "complete", std::int32_t(1));
+    f.close();
+  });
+}
+
+}  // namespace gs

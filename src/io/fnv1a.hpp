@@ -1,0 +1,42 @@
+#pragma once
+// FNV-1a, 64 bit: the checksum of checkpoint data and the scene hash that ties
+// a checkpoint or snapshot to the scene file it came from. Not cryptographic;
+// it catches torn writes, flipped bytes and the wrong scene, not tampering.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gs {
+
+class Fnv1a64 {
+ public:
+  static constexpr std::uint64_t kOffsetBasis = 14695981039346656037ull;
+  static constexpr std::uint64_t kPrime = 1099511628211ull;
+
+  void add(const void* bytes, std::size_t count) {
+    const auto* p = static_cast<const unsigned char*>(bytes);
+    std::uint64_t h = hash_;
+    for (std::size_t i = 0; i < count; ++i) h = (h ^ p[i]) * kPrime;
+    hash_ = h;
+  }
+  // The value's bytes as they lie in memory (little-endian on every target we build for).
+  template <class T>
+  void add_value(const T& value) { add(&value, sizeof(T)); }
+  template <class T>
+  void add_array(const std::vector<T>& values) { add(values.data(), values.size() * sizeof(T)); }
+
+  std::uint64_t value() const { return hash_; }
+
+ private:
+  std::uint64_t hash_ = kOffsetBasis;
+};
+
+// FNV-1a 64 of the scene file's text, byte for byte: any edit changes it.
+inline std::uint64_t scene_hash(const std::string& scene_file_text) {
+  Fnv1a64 h;
+  h.add(scene_file_text.data(), scene_file_text.size());
+  return h.value();
+}
+
+}  // namespace gs

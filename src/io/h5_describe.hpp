@@ -1,0 +1,14 @@
+#pragma once
+// A human-readable summary of a grainstorm HDF5 snapshot or checkpoint, for
+// `grainstorm info FILE.h5`: kind, time, step, particle count, fields,
+// bounding box, walls, scene hash, version; for a checkpoint also the history,
+// the decomposition and whether its checksum holds.
+#include <string>
+
+namespace gs {
+
+// Throws std::runtime_error when the file is missing, not HDF5, or neither a
+// grainstorm snapshot nor a checkpoint.
+std::string describe_h5(const std::string& path);
+
+}  // namespace gs

@@ -1,0 +1,135 @@
+#pragma once
+// Typed helpers over the HDF5 C API for src/io: files, groups, datasets and
+// attributes addressed by path ("particles/position", "/" for the root).
+// Files store fixed little-endian types whatever the machine; every call is
+// checked (h5_check.hpp).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/particle_store.hpp"
+#include "core/vec3.hpp"
+#include "io/h5_check.hpp"
+
+namespace gs::h5 {
+
+// A file that opens but does not hold what the reader expects: a missing
+// dataset or attribute, a wrong shape or element type.
+struct FormatError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// HDF5 types of an element type: in memory (native) and in the file.
+template <class T> struct TypeOf;
+template <> struct TypeOf<double> {
+  static hid_t memory() { return H5T_NATIVE_DOUBLE; }
+  static hid_t file() { return H5T_IEEE_F64LE; }
+};
+template <> struct TypeOf<float> {
+  static hid_t memory() { return H5T_NATIVE_FLOAT; }
+  static hid_t file() { return H5T_IEEE_F32LE; }
+};
+template <> struct TypeOf<std::uint8_t> {
+  static hid_t memory() { return H5T_NATIVE_UINT8; }
+  static hid_t file() { return H5T_STD_U8LE; }
+};
+template <> struct TypeOf<std::uint16_t> {
+  static hid_t memory() { return H5T_NATIVE_UINT16; }
+  static hid_t file() { return H5T_STD_U16LE; }
+};
+template <> struct TypeOf<std::uint32_t> {
+  static hid_t memory() { return H5T_NATIVE_UINT32; }
+  static hid_t file() { return H5T_STD_U32LE; }
+};
+template <> struct TypeOf<std::int32_t> {
+  static hid_t memory() { return H5T_NATIVE_INT32; }
+  static hid_t file() { return H5T_STD_I32LE; }
+};
+template <> struct TypeOf<std::int64_t> {
+  static hid_t memory() { return H5T_NATIVE_INT64; }
+  static hid_t file() { return H5T_STD_I64LE; }
+};
+template <> struct TypeOf<std::uint64_t> {
+  static hid_t memory() { return H5T_NATIVE_UINT64; }
+  static hid_t file() { return H5T_STD_U64LE; }
+};
+
+// An open HDF5 file and its path, which every error message names.
+class File {
+ public:
+  static File create(const std::string& path);  // replaces an existing file
+  static File open_read_only(const std::string& path);
+
+  hid_t id() const { return handle_.get(); }
+  const std::string& path() const { return path_; }
+  // Checked close: HDF5 writes its buffers here. Every object opened in the
+  // file must be closed first. Without it the destructor closes unchecked.
+  void close();
+
+ private:
+  File(std::string path, Handle handle) : path_(std::move(path)), handle_(std::move(handle)) {}
+  std::string path_;
+  Handle handle_;
+};
+
+void create_group(const File& f, const std::string& path);
+// Whether every component of `path` exists ("walls/kind": group and dataset).
+bool exists(const File& f, const std::string& path);
+
+// Dataset `path` of shape `dims` from data (product of dims elements, row-major).
+void write_raw(const File& f, const std::string& path, hid_t memory_type, hid_t file_type, const void* data,
+               const std::vector<hsize_t>& dims);
+template <class T>
+void write_array(const File& f, const std::string& path, const T* data, const std::vector<hsize_t>& dims) {
+  write_raw(f, path, TypeOf<T>::memory(), TypeOf<T>::file(), data, dims);
+}
+template <class T>
+void write_vector(const File& f, const std::string& path, const std::vector<T>& v) {
+  write_array(f, path, v.data(), {hsize_t(v.size())});
+}
+void write_vec3(const File& f, const std::string& path, const std::vector<Vec3d>& v);             // (N, 3)
+void write_quaternions(const File& f, const std::string& path, const std::vector<Quaternion>& q);  // (N, 4) w x y z
+
+// Shape of dataset `path`; FormatError when it is missing.
+std::vector<hsize_t> dims_of(const File& f, const std::string& path);
+// Reads dataset `path` into data after checking that it has exactly shape
+// `dims` and the file type of T (no silent conversion); FormatError if not.
+void read_raw(const File& f, const std::string& path, hid_t memory_type, hid_t file_type, void* data,
+              const std::vector<hsize_t>& dims);
+template <class T>
+std::vector<T> read_array(const File& f, const std::string& path, const std::vector<hsize_t>& dims) {
+  hsize_t count = 1;
+  for (hsize_t d : dims) count *= d;
+  std::vector<T> out(count);
+  read_raw(f, path, TypeOf<T>::memory(), TypeOf<T>::file(), out.data(), dims);
+  return out;
+}
+std::vector<Vec3d> read_vec3(const File& f, const std::string& path, hsize_t n);
+std::vector<Quaternion> read_quaternions(const File& f, const std::string& path, hsize_t n);
+
+// Scalar attributes of the object at `object` ("/" is the root).
+void write_attribute_raw(const File& f, const std::string& object, const std::string& name, hid_t memory_type,
+                         hid_t file_type, const void* value);
+template <class T>
+void write_attribute(const File& f, const std::string& object, const std::string& name, T value) {
+  write_attribute_raw(f, object, name, TypeOf<T>::memory(), TypeOf<T>::file(), &value);
+}
+void write_string_attribute(const File& f, const std::string& object, const std::string& name,
+                            const std::string& value);
+
+bool has_attribute(const File& f, const std::string& object, const std::string& name);
+// FormatError when the attribute is missing or not a scalar of T's class and size.
+void read_attribute_raw(const File& f, const std::string& object, const std::string& name, hid_t memory_type,
+                        hid_t file_type, void* value);
+template <class T>
+T read_attribute(const File& f, const std::string& object, const std::string& name) {
+  T value{};
+  read_attribute_raw(f, object, name, TypeOf<T>::memory(), TypeOf<T>::file(), &value);
+  return value;
+}
+std::string read_string_attribute(const File& f, const std::string& object, const std::string& name);
+
+// Names of the links directly under group `path`, in name order.
+std::vector<std::string> list_group(const File& f, const std::string& path);
+
+}  // namespace gs::h5

@@ -1,0 +1,35 @@
+#pragma once
+// HDF5 particle snapshots (docs/OUTPUT.md): one file per output time with the
+// particle fields the scene selected, the walls, and the time, step and scene
+// they belong to. Written to a temporary file and renamed, so a snapshot file
+// that exists is complete.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "engine/simulation.hpp"
+#include "io/snapshot_fields.hpp"
+#include "walls/wall.hpp"
+
+namespace gs {
+
+constexpr int kSnapshotFormatVersion = 1;
+
+struct SnapshotMetadata {
+  std::uint64_t scene_hash = 0;              // scene_hash() of the scene file's text
+  std::string scene_path;                    // the scene file, for the reader's information
+  std::vector<std::string> wall_names;       // empty, or one name per wall
+  std::vector<std::uint16_t> contact_count;  // contacts per particle in snapshot order;
+                                             // required when the fields select contact_count
+};
+
+// particles_<step, 10 digits>.h5
+std::string snapshot_h5_name(long long step);
+
+// Writes `s` (its time and step too) with the selected fields and `walls` at
+// their current pose. Throws std::invalid_argument when a selected field does
+// not hold one value per particle, and h5::H5Error when HDF5 fails.
+void write_snapshot(const std::string& path, const ParticleSnapshot& s, const SnapshotFields& fields,
+                    const std::vector<Wall>& walls, const SnapshotMetadata& metadata);
+
+}  // namespace gs

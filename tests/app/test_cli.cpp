@@ -1,0 +1,160 @@
+// The `grainstorm` command as a user meets it: bad scenes and options are
+// refused before anything is written, with the offending key on stderr; the
+// informational commands succeed.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace gs::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A valid scene (one sphere above a floor), small enough to run in an instant.
+const std::string kGoodScene = R"(domain: {min: [0, 0, -0.005], max: [0.01, 0.01, 0.01]}
+gravity: [0, 0, -9.81]
+materials:
+  - {name: glass, density: 2500}
+pairs:
+  - {materials: [glass, glass], stiffness_normal: 1000, restitution: 0.5}
+walls:
+  - plane: {point: [0, 0, 0], normal: [0, 0, 1]}
+    material: glass
+    name: floor
+particles:
+  - list:
+      - {position: [0.005, 0.005, 0.002], radius: 0.001, material: glass}
+time_step: {fraction_of_contact_time: 0.1}
+duration: 0.001
+output: {directory: scene_out}
+)";
+
+struct CliResult {
+  int exit_code;
+  std::string out, err;
+};
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Each test gets a fresh directory: `work` (the command's working directory,
+// holding scene.yaml) and, beside it, the captured stdout and stderr.
+class CliTest : public testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "gs_cli_XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    root_ = pattern;
+    work_ = root_ / "work";
+    fs::create_directory(work_);
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  CliResult run_cli(const std::string& args) const {
+    const std::string command = "cd '" + work_.string() + "' && '" GS_CLI_PATH "' " + args + " > '" +
+                                (root_ / "stdout").string() + "' 2> '" + (root_ / "stderr").string() + "'";
+    const int status = std::system(command.c_str());
+    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return {code, read_file(root_ / "stdout"), read_file(root_ / "stderr")};
+  }
+
+  void write_scene(const std::string& text) const { std::ofstream(work_ / "scene.yaml") << text; }
+
+  std::vector<std::string> work_entries() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(work_)) names.push_back(e.path().filename().string());
+    return names;
+  }
+
+  // `run` on `scene` fails, names `key` on stderr and writes nothing: neither
+  // the --out directory nor the scene's own output directory appears.
+  void expect_refused(const std::string& scene, const std::string& key, const std::string& extra_args = "") const {
+    write_scene(scene);
+    const CliResult r = run_cli("run scene.yaml --backend cpu --out out_dir " + extra_args);
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.err.find(key), std::string::npos) << "stderr does not name '" << key << "':\n" << r.err;
+    EXPECT_EQ(work_entries(), std::vector<std::string>{"scene.yaml"}) << "something was written";
+    if (!extra_args.empty()) return;  // the scene itself is fine
+    const CliResult c = run_cli("check scene.yaml");
+    EXPECT_NE(c.exit_code, 0);
+    EXPECT_NE(c.err.find(key), std::string::npos) << "check: stderr does not name '" << key << "':\n" << c.err;
+  }
+
+  fs::path root_, work_;
+};
+
+// kGoodScene with `from` replaced by `to`.
+std::string edit(const std::string& from, const std::string& to) {
+  std::string text = kGoodScene;
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "test bug: '" << from << "' is not in the scene";
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+// The reference for the failures below: the unedited scene checks, runs and
+// writes its output.
+TEST_F(CliTest, GoodSceneRunsAndWrites) {
+  write_scene(kGoodScene);
+  EXPECT_EQ(run_cli("check scene.yaml").exit_code, 0);
+  const CliResult r = run_cli("run scene.yaml --backend cpu --steps 3 --out out_dir");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::is_directory(work_ / "out_dir"));
+  EXPECT_FALSE(fs::is_empty(work_ / "out_dir"));
+}
+
+TEST_F(CliTest, UnknownKey) { expect_refused(edit("gravity:", "gravty:"), "gravty"); }
+
+TEST_F(CliTest, MissingKey) { expect_refused(edit("duration: 0.001\n", ""), "duration"); }
+
+TEST_F(CliTest, NegativeRadius) {
+  expect_refused(edit("radius: 0.001", "radius: -0.001"), "particles[0].list[0].radius");
+}
+
+TEST_F(CliTest, RestitutionAboveOne) {
+  expect_refused(edit("restitution: 0.5", "restitution: 1.5"), "pairs[0].restitution");
+}
+
+TEST_F(CliTest, ParticleOutsideDomain) {
+  expect_refused(edit("[0.005, 0.005, 0.002]", "[0.005, 0.005, 0.0095]"), "particles[0].list[0]");
+}
+
+TEST_F(CliTest, ParticleCutsWall) {
+  expect_refused(edit("[0.005, 0.005, 0.002]", "[0.005, 0.005, 0.0005]"), "wall 'floor'");
+}
+
+TEST_F(CliTest, TimeStepAboveStabilityLimit) {
+  expect_refused(edit("fraction_of_contact_time: 0.1", "fraction_of_contact_time: 0.5"), "time_step");
+}
+
+TEST_F(CliTest, UnknownOption) { expect_refused(kGoodScene, "--bogus", "--bogus"); }
+
+TEST_F(CliTest, VersionAndHelp) {
+  const CliResult v = run_cli("--version");
+  EXPECT_EQ(v.exit_code, 0);
+  EXPECT_EQ(v.out, "grainstorm " GS_VERSION "\n");
+  const CliResult h = run_cli("--help");
+  EXPECT_EQ(h.exit_code, 0);
+  EXPECT_NE(h.out.find("usage:"), std::string::npos);
+  EXPECT_TRUE(work_entries().empty());
+}
+
+TEST_F(CliTest, CheckDemoScene) {
+  const CliResult r = run_cli("check '" GS_SOURCE_DIR "/cases/demo/settle.yaml'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("is valid"), std::string::npos);
+  EXPECT_TRUE(work_entries().empty());  // check writes nothing
+}
+
+}  // namespace
+}  // namespace gs::test

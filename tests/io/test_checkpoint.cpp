@@ -1,0 +1,260 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+
+#include "io/atomic_file.hpp"
+#include "io/checkpoint.hpp"
+#include "io/fnv1a.hpp"
+#include "io/h5_describe.hpp"
+#include "io/h5_walls.hpp"
+#include "io_test_helpers.hpp"
+
+namespace gs {
+namespace {
+
+using test::ScratchDir;
+
+constexpr std::uint64_t kSceneHash = 0x0123456789abcdefull;
+
+Checkpoint sample_checkpoint(std::size_t n = 6, int slots = 4) {
+  Checkpoint c;
+  c.step = 123456;
+  c.time = 0.1234567890123;
+  c.particles = test::sample_particles(n, c.time, c.step);
+  if (n > 0) {  // values a decimal round trip would lose or change
+    c.particles.position[0] = {-0.0, std::numeric_limits<double>::denorm_min(), 1.0 / 3.0};
+    c.particles.velocity[0] = {std::numeric_limits<double>::max(), std::nextafter(1.0, 2.0), -1e-300};
+    c.particles.radius[0] = std::nextafter(0.001f, 1.0f);
+  }
+  c.history.slots = slots;
+  for (std::size_t i = 0; i < n * std::size_t(slots); ++i) {
+    c.history.partner.push_back(i % 3 == 0 ? kNoPartner : i % 3 == 1 ? ParticleId(i) : kWallPartnerBase + 1);
+    c.history.tangential.push_back({1e-9 * double(i), -1.0 / double(i + 7), 0.0});
+  }
+  c.walls = test::sample_walls();
+  c.scene_hash = kSceneHash;
+  c.rank_count = 3;
+  c.decomposition_axis = 2;
+  c.decomposition_cuts = {0.0, 0.0333, 0.0711, 0.1};
+  c.random_state = 0xfedcba9876543210ull;
+  return c;
+}
+
+template <class T>
+bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+bool same_walls(const std::vector<Wall>& a, const std::vector<Wall>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (std::memcmp(wall_state(a[i]).data(), wall_state(b[i]).data(), sizeof(double) * kWallStateSize) != 0)
+      return false;
+  return true;
+}
+
+void expect_bitwise_equal(const Checkpoint& a, const Checkpoint& b) {
+  EXPECT_EQ(a.step, b.step);
+  EXPECT_EQ(std::memcmp(&a.time, &b.time, sizeof(double)), 0);
+  EXPECT_EQ(a.particles.step, b.particles.step);
+  EXPECT_EQ(std::memcmp(&a.particles.time, &b.particles.time, sizeof(double)), 0);
+  const ParticleSnapshot &p = a.particles, &q = b.particles;
+  EXPECT_TRUE(same_bytes(p.id, q.id));
+  EXPECT_TRUE(same_bytes(p.material, q.material));
+  EXPECT_TRUE(same_bytes(p.marker, q.marker));
+  EXPECT_TRUE(same_bytes(p.radius, q.radius));
+  EXPECT_TRUE(same_bytes(p.mass, q.mass));
+  EXPECT_TRUE(same_bytes(p.inertia, q.inertia));
+  EXPECT_TRUE(same_bytes(p.position, q.position));
+  EXPECT_TRUE(same_bytes(p.velocity, q.velocity));
+  EXPECT_TRUE(same_bytes(p.angular_velocity, q.angular_velocity));
+  EXPECT_TRUE(same_bytes(p.orientation, q.orientation));
+  EXPECT_TRUE(same_bytes(p.force, q.force));
+  EXPECT_TRUE(same_bytes(p.torque, q.torque));
+  EXPECT_EQ(a.history.slots, b.history.slots);
+  EXPECT_TRUE(same_bytes(a.history.partner, b.history.partner));
+  EXPECT_TRUE(same_bytes(a.history.tangential, b.history.tangential));
+  EXPECT_TRUE(same_bytes(a.history.rolling, b.history.rolling));
+  EXPECT_TRUE(same_walls(a.walls, b.walls));
+  EXPECT_EQ(a.scene_hash, b.scene_hash);
+  EXPECT_EQ(a.rank_count, b.rank_count);
+  EXPECT_EQ(a.decomposition_axis, b.decomposition_axis);
+  EXPECT_TRUE(same_bytes(a.decomposition_cuts, b.decomposition_cuts));
+  EXPECT_EQ(a.random_state, b.random_state);
+}
+
+// The CheckpointError message of reading `path`, or "" when it reads.
+std::string refusal(const std::string& path, const CheckpointExpectations& expect = {}) {
+  try {
+    read_checkpoint(path, expect);
+  } catch (const CheckpointError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void copy_file(const std::string& from, const std::string& to) {
+  std::filesystem::copy_file(from, to, std::filesystem::copy_options::overwrite_existing);
+}
+
+// Edits a written checkpoint in place through the C API, as damage would.
+template <class Edit>
+void edit_h5(const std::string& path, Edit edit) {
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  edit(f);
+  ASSERT_GE(H5Fclose(f), 0);
+}
+
+TEST(Checkpoint, RoundTripIsBitwise) {
+  ScratchDir dir;
+  const Checkpoint c = sample_checkpoint();
+  const std::string path = dir.file(checkpoint_h5_name(c.step));
+  write_checkpoint(path, c);
+  const Checkpoint back = read_checkpoint(path, {kSceneHash});
+  expect_bitwise_equal(c, back);
+  EXPECT_TRUE(back.history.rolling.empty());
+  EXPECT_EQ(checkpoint_checksum(back), checkpoint_checksum(c));
+  EXPECT_EQ(test::read_h5_attribute<std::uint64_t>(path, "/", "checksum", H5T_NATIVE_UINT64), checkpoint_checksum(c));
+}
+
+TEST(Checkpoint, RoundTripWithoutParticlesOrHistory) {
+  ScratchDir dir;
+  const Checkpoint c = sample_checkpoint(0, 0);
+  write_checkpoint(dir.file("empty.h5"), c);
+  expect_bitwise_equal(c, read_checkpoint(dir.file("empty.h5")));
+}
+
+TEST(Checkpoint, AtomicWriteLeavesNoTemporaryFile) {
+  ScratchDir dir;
+  const std::string path = dir.file("checkpoint.h5");
+  write_checkpoint(path, sample_checkpoint());
+  Checkpoint later = sample_checkpoint();
+  later.step += 1000;
+  write_checkpoint(path, later);  // replaces the previous one
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"checkpoint.h5"});
+  EXPECT_EQ(read_checkpoint(path).step, later.step);
+
+  // A write that fails half way removes its temporary file and keeps the old checkpoint.
+  EXPECT_THROW(write_atomically(path,
+                                [](const std::string& temporary) {
+                                  std::ofstream(temporary) << "half a checkpoint";
+                                  throw std::runtime_error("disk full");
+                                }),
+               std::runtime_error);
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"checkpoint.h5"});
+  EXPECT_EQ(read_checkpoint(path).step, later.step);
+}
+
+TEST(Checkpoint, InconsistentArraysAreRefusedBeforeWriting) {
+  ScratchDir dir;
+  Checkpoint c = sample_checkpoint();
+  c.particles.torque.pop_back();
+  EXPECT_THROW(write_checkpoint(dir.file("c.h5"), c), std::invalid_argument);
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(Checkpoint, TruncatedFileIsRefusedAndThePreviousOneStillReads) {
+  ScratchDir dir;
+  const std::string good = dir.file("checkpoint_0000001000.h5"), cut = dir.file("checkpoint_0000002000.h5");
+  write_checkpoint(good, sample_checkpoint());
+  copy_file(good, cut);
+  std::filesystem::resize_file(cut, std::filesystem::file_size(cut) / 2);
+  const std::string why = refusal(cut);
+  EXPECT_NE(why.find(cut), std::string::npos) << why;
+  EXPECT_NE(why.find("truncated"), std::string::npos) << why;
+  EXPECT_EQ(refusal(good), "");
+
+  std::filesystem::resize_file(cut, 5);  // not even the HDF5 signature is left
+  EXPECT_NE(refusal(cut).find("not an HDF5 file"), std::string::npos) << refusal(cut);
+}
+
+TEST(Checkpoint, FileThatIsNotHdf5IsRefused) {
+  ScratchDir dir;
+  const std::string path = dir.file("checkpoint.h5");
+  { std::ofstream(path) << "step: 12\n"; }
+  EXPECT_NE(refusal(path).find("not an HDF5 file"), std::string::npos) << refusal(path);
+  EXPECT_NE(refusal(dir.file("absent.h5")).find("no such file"), std::string::npos);
+}
+
+TEST(Checkpoint, FlippedByteIsCaughtByTheChecksum) {
+  ScratchDir dir;
+  const std::string path = dir.file("checkpoint.h5");
+  write_checkpoint(path, sample_checkpoint());
+  haddr_t offset = HADDR_UNDEF;
+  edit_h5(path, [&](hid_t f) {
+    const hid_t d = H5Dopen2(f, "particles/position", H5P_DEFAULT);
+    offset = H5Dget_offset(d);
+    H5Dclose(d);
+  });
+  ASSERT_NE(offset, HADDR_UNDEF);
+  {
+    std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
+    file.seekg(std::streamoff(offset + 29));
+    const char byte = char(file.get() ^ 0x10);
+    file.seekp(std::streamoff(offset + 29));
+    file.put(byte);
+  }
+  const std::string why = refusal(path);
+  EXPECT_NE(why.find("checksum mismatch"), std::string::npos) << why;
+  EXPECT_NE(why.find(path), std::string::npos) << why;
+}
+
+TEST(Checkpoint, WrongSceneIsRefused) {
+  ScratchDir dir;
+  const std::string path = dir.file("checkpoint.h5");
+  write_checkpoint(path, sample_checkpoint());
+  const std::string why = refusal(path, {scene_hash("another scene")});
+  EXPECT_NE(why.find("scene hash 0x0123456789abcdef"), std::string::npos) << why;
+  EXPECT_EQ(refusal(path, {kSceneHash}), "");
+  EXPECT_EQ(refusal(path, {}), "") << "no expectation, no check";
+}
+
+TEST(Checkpoint, MissingDatasetIsRefused) {
+  ScratchDir dir;
+  const std::string path = dir.file("checkpoint.h5");
+  write_checkpoint(path, sample_checkpoint());
+  edit_h5(path, [](hid_t f) { ASSERT_GE(H5Ldelete(f, "particles/torque", H5P_DEFAULT), 0); });
+  const std::string why = refusal(path);
+  EXPECT_NE(why.find("missing dataset"), std::string::npos) << why;
+  EXPECT_NE(why.find("/particles/torque"), std::string::npos) << why;
+}
+
+TEST(Checkpoint, OtherFormatVersionIsRefused) {
+  ScratchDir dir;
+  const std::string path = dir.file("checkpoint.h5");
+  write_checkpoint(path, sample_checkpoint());
+  edit_h5(path, [](hid_t f) {
+    const hid_t a = H5Aopen(f, "format_version", H5P_DEFAULT);
+    const std::int32_t version = 99;
+    ASSERT_GE(H5Awrite(a, H5T_NATIVE_INT32, &version), 0);
+    H5Aclose(a);
+  });
+  EXPECT_NE(refusal(path).find("format version 99"), std::string::npos) << refusal(path);
+}
+
+TEST(Checkpoint, UnfinishedFileIsRefused) {
+  ScratchDir dir;
+  const std::string path = dir.file("checkpoint.h5");
+  write_checkpoint(path, sample_checkpoint());
+  edit_h5(path, [](hid_t f) { ASSERT_GE(H5Adelete(f, "complete"), 0); });
+  EXPECT_NE(refusal(path).find("'complete' marker is missing"), std::string::npos) << refusal(path);
+}
+
+TEST(Checkpoint, DescribeReportsIntegrity) {
+  ScratchDir dir;
+  const std::string path = dir.file("checkpoint.h5");
+  write_checkpoint(path, sample_checkpoint());
+  const std::string text = describe_h5(path);
+  for (const char* expected : {"kind:          checkpoint", "step 123456", "particles:     6",
+                               "history:       4 slots per particle, tangential springs yes, rolling springs no",
+                               "decomposition: 3 rank(s), slab axis z", "scene hash:    0x0123456789abcdef",
+                               "integrity:     complete, checksum matches"})
+    EXPECT_NE(text.find(expected), std::string::npos) << "missing '" << expected << "' in\n" << text;
+}
+
+}  // namespace
+}  // namespace gs
