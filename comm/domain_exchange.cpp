@@ -153,6 +153,11 @@ std::shared_ptr<DomainExchange> make_domain_exchange(const SceneSpec& scene, Tra
   std::vector<Vec3d> x;
   x.reserve(scene.particles.size());
   for (const ParticleInit& p : scene.particles) x.push_back(p.position);
+  return make_domain_exchange(scene, transport, x);
+}
+
+std::shared_ptr<DomainExchange> make_domain_exchange(const SceneSpec& scene, Transport& transport,
+                                                     const std::vector<Vec3d>& x) {
   const double range = interaction_range(scene);
   const DecompositionSpec& spec = scene.decomposition;
   std::unique_ptr<Decomposition> d;

@@ -46,8 +46,11 @@ class DomainExchange final : public RankExchange {
   double seconds_ = 0;
 };
 
-// Partitions the scene's particles over the transport's ranks (every rank
-// computes the same partition from the same scene).
+// Partitions particles at `positions` (all of the run's) over the transport's
+// ranks; every rank computes the same partition from the same positions.
+std::shared_ptr<DomainExchange> make_domain_exchange(const SceneSpec& scene, Transport& transport,
+                                                     const std::vector<Vec3d>& positions);
+// The same for the scene's initial particles.
 std::shared_ptr<DomainExchange> make_domain_exchange(const SceneSpec& scene, Transport& transport);
 
 }  // namespace gs

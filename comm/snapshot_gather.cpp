@@ -1,5 +1,7 @@
 #include "comm/snapshot_gather.hpp"
 
+#include "comm/records_codec.hpp"
+
 #include <algorithm>
 #include <cstring>
 #include <numeric>
@@ -75,6 +77,34 @@ ParticleSnapshot gather_snapshot(Transport& transport, const ParticleSnapshot& l
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all.id[a] < all.id[b]; });
   for_each_field(all, [&](auto& v) { permute(v, order); });
   return all;
+}
+
+HostHistory gather_history(Transport& transport, const std::vector<ParticleId>& local_ids, const HostHistory& local) {
+  if (transport.size() == 1) return local;
+  ParticleRecords mine;
+  mine.id = local_ids;
+  mine.history = local;
+  Bytes bytes;
+  encode_records(mine, bytes);
+  ParticleRecords all;
+  for (const Bytes& b : transport.gather(bytes)) append_records(all, decode_records(b));
+  HostHistory out;
+  out.slots = local.slots;
+  if (transport.rank() != 0) return out;
+  std::vector<std::size_t> order(all.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all.id[a] < all.id[b]; });
+  const std::size_t k = std::size_t(out.slots);
+  auto rows = [&](const auto& from, auto& to) {
+    if (from.empty()) return;
+    to.resize(from.size());
+    for (std::size_t r = 0; r < order.size(); ++r)
+      for (std::size_t s = 0; s < k; ++s) to[r * k + s] = from[order[r] * k + s];
+  };
+  rows(all.history.partner, out.partner);
+  rows(all.history.tangential, out.tangential);
+  rows(all.history.rolling, out.rolling);
+  return out;
 }
 
 }  // namespace gs

@@ -8,5 +8,8 @@ namespace gs {
 
 // Collective. Rank 0 gets the whole snapshot; other ranks an empty one.
 ParticleSnapshot gather_snapshot(Transport& transport, const ParticleSnapshot& local);
+// Collective. The contact history of every particle on rank 0, in id order;
+// `local` is in the order of `local_ids`.
+HostHistory gather_history(Transport& transport, const std::vector<ParticleId>& local_ids, const HostHistory& local);
 
 }  // namespace gs

@@ -8,6 +8,7 @@
 #include "app/commands.hpp"
 #include "comm/transport.hpp"
 #include "engine/simulation.hpp"
+#include "io/checkpoint.hpp"
 #include "scene/scene.hpp"
 
 namespace {
@@ -36,6 +37,9 @@ int run_on_every_rank(const std::vector<std::string>& args) {
     transport = gs::launched_by_mpi() ? gs::make_mpi_transport() : gs::make_single_transport();
     return gs::command_run(args, *transport);
   } catch (const gs::SceneError& e) {
+    if (!transport || transport->rank() == 0) std::fprintf(stderr, "grainstorm: error: %s\n", e.what());
+    return 1;
+  } catch (const gs::CheckpointError& e) {
     if (!transport || transport->rank() == 0) std::fprintf(stderr, "grainstorm: error: %s\n", e.what());
     return 1;
   } catch (const gs::SimulationFault& e) {

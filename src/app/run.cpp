@@ -3,25 +3,31 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "app/commands.hpp"
+#include "app/run_output.hpp"
+#include "app/stop_signal.hpp"
 #include "backend/memory.hpp"
 #include "comm/domain_exchange.hpp"
-#include "comm/snapshot_gather.hpp"
 #include "engine/simulation.hpp"
-#include "io/particle_csv.hpp"
+#include "io/fnv1a.hpp"
+#include "io/restart.hpp"
 #include "scene/scene_loader.hpp"
 
 namespace gs {
 namespace {
+
+using Clock = std::chrono::steady_clock;
 
 struct RunArgs {
   std::string scene;
   Backend backend = default_backend();
   long long steps = -1;
   std::string out;
+  std::string restart;
 };
 
 RunArgs parse_run_args(const std::vector<std::string>& args) {
@@ -35,6 +41,7 @@ RunArgs parse_run_args(const std::vector<std::string>& args) {
     if (a == "--backend") r.backend = parse_backend(value());
     else if (a == "--steps") r.steps = std::stoll(value());
     else if (a == "--out") r.out = value();
+    else if (a == "--restart") r.restart = value();
     else if (!a.empty() && a[0] == '-') throw std::invalid_argument("unknown option " + a);
     else if (r.scene.empty()) r.scene = a;
     else throw std::invalid_argument("more than one scene given: " + a);
@@ -44,16 +51,28 @@ RunArgs parse_run_args(const std::vector<std::string>& args) {
   return r;
 }
 
+std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+long long steps_per(double interval, double dt) {
+  return interval > 0 ? std::max(1LL, std::llround(interval / dt)) : 0;
+}
+
 // Progress to stderr at most every two seconds: step, time, rate, ETA.
 class Progress {
  public:
-  Progress(long long total, long long particles) : total_(total), particles_(particles) {}
+  Progress(long long first, long long total, long long particles)
+      : first_(first), total_(total), particles_(particles) {}
   void update(const Simulation& sim) {
-    const auto now = std::chrono::steady_clock::now();
+    const auto now = Clock::now();
     if (std::chrono::duration<double>(now - last_).count() < 2.0 && sim.step_count() < total_) return;
     last_ = now;
     const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double done = double(sim.step_count());
+    const double done = double(sim.step_count() - first_);
     const double rate = elapsed > 0 ? done * double(particles_) / elapsed : 0;
     const double eta = done > 0 ? elapsed * double(total_ - sim.step_count()) / done : 0;
     std::fprintf(stderr, "step %lld/%lld  t = %.6g s  %.3g particle-steps/s  ETA %.0f s\n", sim.step_count(), total_,
@@ -61,17 +80,25 @@ class Progress {
   }
 
  private:
-  long long total_, particles_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_ = start_;
+  long long first_, total_, particles_;
+  Clock::time_point start_ = Clock::now(), last_ = start_;
 };
 
-void print_timings(const Simulation& sim, double wall) {
-  const StepTimings& t = sim.timings();
-  std::printf("time per phase (s, rank 0): integration %.3f, neighbour build %.3f, contact forces %.3f, "
-              "exchange %.3f, total wall %.3f\n",
-              t.integrate, t.neighbours, t.forces, t.exchange, wall);
-  std::printf("peak %s memory (rank 0): %s\n", backend_name(sim.backend()),
-              human_bytes(double(backend_peak_bytes(sim.backend()))).c_str());
+std::unique_ptr<Simulation> start(const SceneSpec& scene, const RunArgs& a, Transport& transport,
+                                  std::uint64_t hash) {
+  RunOptions options;
+  options.backend = a.backend;
+  if (a.restart.empty()) {
+    std::shared_ptr<DomainExchange> exchange;
+    if (transport.size() > 1) exchange = make_domain_exchange(scene, transport);
+    return std::make_unique<Simulation>(scene, options, exchange);
+  }
+  CheckpointExpectations expect;
+  expect.scene_hash = hash;
+  const RestartState r = restart_state(read_checkpoint(a.restart, expect));
+  std::shared_ptr<DomainExchange> exchange;
+  if (transport.size() > 1) exchange = make_domain_exchange(scene, transport, r.particles.position);
+  return std::make_unique<Simulation>(scene, options, exchange, r);
 }
 
 }  // namespace
@@ -79,46 +106,64 @@ void print_timings(const Simulation& sim, double wall) {
 int command_run(const std::vector<std::string>& args, Transport& transport) {
   const RunArgs a = parse_run_args(args);
   const SceneSpec scene = load_scene(a.scene);
-  const bool root = transport.rank() == 0;
+  const std::uint64_t hash = scene_hash(file_text(a.scene));
   const long long total = a.steps >= 0 ? a.steps : std::llround(scene.duration / scene.time_step);
-  const std::string out = a.out.empty() ? scene.output.directory : a.out;
   if (a.backend == Backend::cuda) select_cuda_device(transport.local_rank());
-  RunOptions options;
-  options.backend = a.backend;
-  std::shared_ptr<DomainExchange> exchange;
-  if (transport.size() > 1) exchange = make_domain_exchange(scene, transport);
-  Simulation sim(scene, options, exchange);
-  const long long particles = exchange ? exchange->total(sim.particle_count()) : sim.particle_count();
-  if (root) {
-    std::filesystem::create_directories(out);
-    std::printf("grainstorm %s: %s, %lld particles, backend %s, %d rank%s, dt = %.4g s (contact time %.4g s), %lld steps\n",
-                GS_VERSION, a.scene.c_str(), particles, backend_name(a.backend), transport.size(),
-                transport.size() > 1 ? "s" : "", scene.time_step, scene.contact_time, total);
-    if (exchange) std::printf("decomposition: %s\n", exchange->describe().c_str());
-    std::fflush(stdout);
+  install_stop_signals();
+  std::unique_ptr<Simulation> sim = start(scene, a, transport, hash);
+  RankExchange* exchange = sim->exchange();
+  RunOutput out(scene, a.out.empty() ? scene.output.directory : a.out, transport, hash);
+  const long long particles =
+      exchange ? exchange->total(sim->particle_count()) : sim->particle_count();
+  out.log("grainstorm %s: %s, %lld particles, backend %s, %d rank%s, dt = %.4g s (contact time %.4g s), steps %lld to %lld\n",
+          GS_VERSION, a.scene.c_str(), particles, backend_name(a.backend), transport.size(),
+          transport.size() > 1 ? "s" : "", scene.time_step, scene.contact_time, sim->step_count(), total);
+  if (!a.restart.empty()) out.log("restarted from %s at step %lld\n", a.restart.c_str(), sim->step_count());
+  if (exchange) out.log("decomposition: %s\n", exchange->describe().c_str());
+
+  const long long every = scene.output.interval > 0 ? steps_per(scene.output.interval, scene.time_step) : total;
+  const long long checkpoint_every = steps_per(scene.output.checkpoint_interval, scene.time_step);
+  const double checkpoint_seconds = 60.0 * scene.output.checkpoint_minutes;
+  const bool checkpointing = checkpoint_every > 0 || checkpoint_seconds > 0;
+  const auto t0 = Clock::now();
+  auto last_checkpoint = t0;
+  Progress progress(sim->step_count(), total, particles);
+  if (a.restart.empty()) out.snapshot(*sim);
+  while (sim->step_count() < total) {
+    const long long step = sim->step_count();
+    long long chunk = std::min({every > 0 ? every - step % every : total, total - step, 200LL});
+    if (checkpoint_every > 0) chunk = std::min(chunk, checkpoint_every - step % checkpoint_every);
+    sim->run(chunk);
+    progress.update(*sim);
+    const long long now = sim->step_count();
+    if ((every > 0 && now % every == 0) || now == total) out.snapshot(*sim);
+    const bool wall_due = checkpoint_seconds > 0 &&
+                          std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >= checkpoint_seconds;
+    // Every rank must agree before a collective checkpoint or a stop.
+    const bool stop = transport.min(stop_requested() ? 0 : 1) == 0;
+    const bool due = (checkpoint_every > 0 && now % checkpoint_every == 0) || transport.min(wall_due ? 0 : 1) == 0;
+    if (due || stop || (checkpointing && now == total)) {
+      out.checkpoint(*sim);
+      last_checkpoint = Clock::now();
+    }
+    if (stop) {
+      if (!checkpointing) out.checkpoint(*sim);
+      out.log("stopped by a signal at step %lld (t = %.6g s): the run is not complete; restart with --restart\n", now,
+              sim->time());
+      return 3;
+    }
   }
-  auto write_snapshot = [&] {
-    const ParticleSnapshot s = gather_snapshot(transport, sim.snapshot());
-    if (root) write_particles_csv(out + "/" + snapshot_file_name(sim.step_count()), s);
-  };
-  const long long every =
-      scene.output.interval > 0 ? std::max(1LL, std::llround(scene.output.interval / scene.time_step)) : total;
-  const auto start = std::chrono::steady_clock::now();
-  Progress progress(total, particles);
-  write_snapshot();
-  while (sim.step_count() < total) {
-    const long long to_output = std::min(every - sim.step_count() % every, total - sim.step_count());
-    sim.run(std::min<long long>(to_output, 200));
-    if (root) progress.update(sim);
-    if (sim.step_count() % every == 0 || sim.step_count() == total) write_snapshot();
-  }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (root) {
-    std::printf("done: %lld steps, t = %.6g s, %.3g particle-steps/s, output in %s\n", total, sim.time(),
-                wall > 0 ? double(total) * double(particles) / wall : 0.0, out.c_str());
-    if (exchange) std::printf("decomposition at the end: %s\n", exchange->describe().c_str());
-    print_timings(sim, wall);
-  }
+  const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+  out.log("done: %lld steps, t = %.6g s, %.3g particle-steps/s\n", total, sim->time(),
+          wall > 0 ? double(sim->step_count()) * double(particles) / wall : 0.0);
+  if (exchange) out.log("decomposition at the end: %s\n", exchange->describe().c_str());
+  const StepTimings& t = sim->timings();
+  out.log("time per phase (s, rank 0): integration %.3f, neighbour build %.3f, contact forces %.3f, exchange %.3f, "
+          "output %.3f, total wall %.3f\n",
+          t.integrate, t.neighbours, t.forces, t.exchange, wall - (t.integrate + t.neighbours + t.forces + t.exchange),
+          wall);
+  out.log("peak %s memory (rank 0): %s\n", backend_name(sim->backend()),
+          human_bytes(double(backend_peak_bytes(sim->backend()))).c_str());
   return 0;
 }
 

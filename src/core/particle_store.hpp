@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include "backend/device_array.hpp"
+#include "core/history_layout.hpp"
 #include "core/types.hpp"
 #include "core/vec3.hpp"
 
@@ -26,12 +27,13 @@ struct ForceArrays {
   DeviceArray<Vec3<Real>> torque;  // contact torque [N m]
 };
 
-// Spring history, slot-major: entry (slot s, particle i) at s * stride + i so
-// that neighbouring threads touch neighbouring words.
+// Spring history of up to `capacity` particles, laid out as `strides` says
+// (core/history_layout.hpp; the execution policy picks the order).
 template <class Real>
 struct ContactHistory {
   int slots = 0;
-  std::size_t stride = 0;
+  std::size_t capacity = 0;
+  HistoryStrides strides;
   DeviceArray<ParticleId> partner;        // kNoPartner marks a free slot
   DeviceArray<Vec3<Real>> tangential;     // empty unless friction is on
   DeviceArray<Vec3<Real>> rolling;        // empty unless rolling resistance is on

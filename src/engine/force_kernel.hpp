@@ -1,10 +1,12 @@
 #pragma once
 // Contact forces, one thread per owned particle (as the seed). Each thread
-// visits the 27 cells around its particle in a fixed order, and inside a cell
-// the partners in ascending global id (the cell list is sorted by (cell, id)),
-// then the walls in scene order: the sum of a particle's contact forces is
-// therefore taken in one canonical order, independent of thread scheduling
-// and of how particles are split across ranks.
+// visits the 27 cells around its particle in a fixed order (dz, dy, dx), and
+// inside a cell the partners in ascending global id (the cell list is sorted
+// by (cell, id)), then the walls in scene order: the sum of a particle's
+// contact forces is therefore taken in one canonical order, independent of
+// thread scheduling and of how particles are split across ranks. The three
+// cells dx = -1, 0, 1 of a row are consecutive in the cell list, so a row is
+// read as one range, in that same order.
 #include "contact/contact_slots.hpp"
 #include "core/materials.hpp"
 #include "neighbor/cell_grid.hpp"
@@ -25,8 +27,7 @@ struct ForceKernel {
   // Cell list
   CellGrid grid;
   const Index* sorted;      // particle indices in (cell, id) order
-  const Index* cell_begin;  // per cell, range in `sorted`
-  const Index* cell_end;
+  const Index* cell_begin;  // per cell + 1: cell c is sorted[cell_begin[c], cell_begin[c + 1])
   // Interactions
   PairTable<Real> pairs;
   const Wall* walls;
@@ -46,17 +47,22 @@ struct ForceKernel {
     unsigned touched = 0;
     const Vec3d xi = position[i];
     const CellCoord c = grid.coord(xi);
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const CellCoord n{c.x + dx, c.y + dy, c.z + dz};
-          if (!grid.inside(n)) continue;
-          const std::int64_t cell = grid.linear(n);
-          for (Index k = cell_begin[cell]; k < cell_end[cell]; ++k) {
-            const Index j = sorted[k];
-            if (j != i) add_particle_contact(i, j, xi, total, touched);
-          }
+    const int x_first = c.x > 0 ? c.x - 1 : 0;
+    const int x_last = c.x + 1 < grid.dims[0] ? c.x + 1 : c.x;
+    for (int dz = -1; dz <= 1; ++dz) {
+      const int z = c.z + dz;
+      if (z < 0 || z >= grid.dims[2]) continue;
+      for (int dy = -1; dy <= 1; ++dy) {
+        const int y = c.y + dy;
+        if (y < 0 || y >= grid.dims[1]) continue;
+        const std::int64_t row = grid.linear(CellCoord{0, y, z});
+        const Index end = cell_begin[row + x_last + 1];
+        for (Index k = cell_begin[row + x_first]; k < end; ++k) {
+          const Index j = sorted[k];
+          if (j != i) add_particle_contact(i, j, xi, total, touched);
         }
+      }
+    }
     for (int w = 0; w < n_walls; ++w) add_wall_contact(i, w, xi, total, touched);
     if constexpr (SlotTable<Real, Effects>::kActive) history.release_untouched(i, touched);
     force[i] = total.force;

@@ -10,9 +10,9 @@
 namespace gs {
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 double largest_radius(const std::vector<ParticleInit>& particles) {
   double r = 0;
@@ -31,7 +31,35 @@ std::vector<T> permuted(const std::vector<T>& v, const std::vector<std::size_t>&
 
 Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::shared_ptr<RankExchange> exchange)
     : scene_(scene), options_(options), exchange_(std::move(exchange)) {
-  const Backend b = options.backend;
+  set_up(scene);
+  move_walls(0.0);
+  if (exchange_) {
+    std::vector<ParticleInit> mine;
+    for (const ParticleInit& p : scene.particles)
+      if (exchange_->owns(p.position)) mine.push_back(p);
+    upload(mine);
+    exchange_->refresh_ghosts(store_, *kernels_);
+  } else {
+    upload(scene.particles);
+  }
+  // Forces at t = 0 for the first half kick.
+  rebuild_cells();
+  kernels_->compute_forces(store_, 0.0, 0);
+  check_fault();
+}
+
+Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::shared_ptr<RankExchange> exchange,
+                       const RestartState& restart)
+    : scene_(scene), options_(options), exchange_(std::move(exchange)) {
+  set_up(scene);
+  restore(restart);
+  if (exchange_) exchange_->refresh_ghosts(store_, *kernels_);
+  rebuild_cells();
+  check_fault();
+}
+
+void Simulation::set_up(const SceneSpec& scene) {
+  const Backend b = options_.backend;
   store_.backend = b;
   for (auto* a : {&store_.radius, &store_.mass, &store_.inertia}) *a = DeviceArray<float>(b);
   for (auto* a : {&store_.position, &store_.velocity, &store_.angular_velocity}) *a = DeviceArray<Vec3d>(b);
@@ -45,21 +73,46 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
   grid_ = make_cell_grid(scene.domain_min, scene.domain_max, 2.0 * largest_radius(scene.particles));
   walls_ = scene.walls;
   for (const Wall& w : walls_) walls_move_ = walls_move_ || norm2(w.velocity) > 0 || norm2(w.angular_velocity) > 0;
-  move_walls(0.0);
-  if (exchange_) {
-    std::vector<ParticleInit> mine;
-    for (const ParticleInit& p : scene.particles)
-      if (exchange_->owns(p.position)) mine.push_back(p);
-    upload(mine);
-    exchange_->refresh_ghosts(store_, *kernels_);
-  } else {
-    upload(scene.particles);
-  }
+}
 
-  // Forces at t = 0 for the first half kick.
-  rebuild_cells();
-  kernels_->compute_forces(store_, 0.0, 0);
-  check_fault();
+// This rank's share of the saved particles, bit for bit, with their history
+// and last forces; walls are posed from the absolute time, as in the run.
+void Simulation::restore(const RestartState& r) {
+  step_ = r.step;
+  time_ = r.time;
+  move_walls(time_);
+  std::vector<Index> mine;
+  for (std::size_t i = 0; i < r.particles.size(); ++i)
+    if (!exchange_ || exchange_->owns(r.particles.position[i])) mine.push_back(Index(i));
+  ParticleRecords part;
+  std::vector<Vec3d> force, torque;
+  const std::size_t slots = std::size_t(r.particles.history.slots);
+  part.history.slots = r.particles.history.slots;
+  for (Index k : mine) {
+    const std::size_t i = std::size_t(k);
+    part.id.push_back(r.particles.id[i]);
+    part.material.push_back(r.particles.material[i]);
+    part.marker.push_back(r.particles.marker[i]);
+    part.radius.push_back(r.particles.radius[i]);
+    part.mass.push_back(r.particles.mass[i]);
+    part.inertia.push_back(r.particles.inertia[i]);
+    part.position.push_back(r.particles.position[i]);
+    part.velocity.push_back(r.particles.velocity[i]);
+    part.angular_velocity.push_back(r.particles.angular_velocity[i]);
+    part.orientation.push_back(r.particles.orientation[i]);
+    force.push_back(r.force[i]);
+    torque.push_back(r.torque[i]);
+    const HostHistory& h = r.particles.history;
+    for (std::size_t s = 0; s < slots; ++s) {
+      part.history.partner.push_back(h.partner[i * slots + s]);
+      if (!h.tangential.empty()) part.history.tangential.push_back(h.tangential[i * slots + s]);
+      if (!h.rolling.empty()) part.history.rolling.push_back(h.rolling[i * slots + s]);
+    }
+  }
+  store_.n_owned = 0;
+  store_.n_ghost = 0;
+  kernels_->append(store_, part, false);
+  kernels_->set_forces(store_, force, torque);
 }
 
 void Simulation::upload(const std::vector<ParticleInit>& particles) {
@@ -108,35 +161,35 @@ void Simulation::run(long long steps) {
   const double dt = scene_.time_step;
   IntegrationParams p{dt, scene_.gravity, scene_.domain_min, scene_.domain_max, 0.5 * grid_.cell_size, 0};
   for (long long s = 0; s < steps; ++s) {
-    auto t0 = std::chrono::steady_clock::now();
+    auto t0 = Clock::now();
     p.step = step_ + 1;
     kernels_->kick_drift(store_, p);
     if (walls_move_) move_walls(time_ + dt);
-    timings_.integrate += seconds_since(t0);
+    timings_.integrate += phase_seconds(t0);
     if (exchange_) step_particles_between_ranks();
 
-    t0 = std::chrono::steady_clock::now();
+    t0 = Clock::now();
     if (options_.reorder_interval > 0 && (step_ + 1) % options_.reorder_interval == 0) {
       store_.drop_ghosts();
       rebuild_cells();
       kernels_->reorder_by_cells(store_);
     }
-    timings_.neighbours += seconds_since(t0);
+    timings_.neighbours += phase_seconds(t0);
     if (exchange_) {
-      t0 = std::chrono::steady_clock::now();
+      t0 = Clock::now();
       exchange_->refresh_ghosts(store_, *kernels_);
-      timings_.exchange += seconds_since(t0);
+      timings_.exchange += phase_seconds(t0);
     }
-    t0 = std::chrono::steady_clock::now();
+    t0 = Clock::now();
     rebuild_cells();
-    timings_.neighbours += seconds_since(t0);
+    timings_.neighbours += phase_seconds(t0);
 
-    t0 = std::chrono::steady_clock::now();
+    t0 = Clock::now();
     kernels_->compute_forces(store_, dt, p.step);
-    timings_.forces += seconds_since(t0);
-    t0 = std::chrono::steady_clock::now();
+    timings_.forces += phase_seconds(t0);
+    t0 = Clock::now();
     kernels_->kick(store_, dt, scene_.gravity);
-    timings_.integrate += seconds_since(t0);
+    timings_.integrate += phase_seconds(t0);
     ++step_;
     time_ = double(step_) * dt;
     if (options_.fault_check_interval > 0 && step_ % options_.fault_check_interval == 0) check_fault();
@@ -144,13 +197,19 @@ void Simulation::run(long long steps) {
   check_fault();
 }
 
+// Kernels run asynchronously on a GPU: a phase ends when its kernels have.
+double Simulation::phase_seconds(std::chrono::steady_clock::time_point start) const {
+  kernels_->synchronize();
+  return seconds_since(start);
+}
+
 // Migration every step, a load-balance check every rebalance_interval steps.
 void Simulation::step_particles_between_ranks() {
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = Clock::now();
   const long long next = step_ + 1;
   const bool balance = options_.rebalance_interval > 0 && next % options_.rebalance_interval == 0;
   if (!(balance && exchange_->rebalance(store_, *kernels_))) exchange_->migrate(store_, *kernels_);
-  timings_.exchange += seconds_since(t0);
+  timings_.exchange += phase_seconds(t0);
 }
 
 void Simulation::check_fault() {

@@ -1,6 +1,7 @@
 #pragma once
 // One rank's simulation: the particle store, the compiled step kernels for the
 // scene's effects, walls and the time loop (velocity Verlet).
+#include <chrono>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -29,6 +30,15 @@ struct ParticleSnapshot {
   std::size_t size() const { return id.size(); }
 };
 
+// The state a run continues from (a checkpoint, read by io/): every particle
+// of the run with its history, and the forces of the last step.
+struct RestartState {
+  long long step = 0;
+  double time = 0;
+  ParticleRecords particles;
+  std::vector<Vec3d> force, torque;  // in `particles` order
+};
+
 struct RunOptions {
   Backend backend = Backend::cpu;
   int reorder_interval = 25;     // steps between re-sorting particle memory by cell
@@ -41,6 +51,9 @@ class Simulation {
   // `exchange`: null for a single rank; otherwise this rank keeps the scene's
   // particles it owns and trades the others with its neighbours every step.
   Simulation(const SceneSpec& scene, const RunOptions& options, std::shared_ptr<RankExchange> exchange = nullptr);
+  // Continues from `restart` instead of the scene's initial particles.
+  Simulation(const SceneSpec& scene, const RunOptions& options, std::shared_ptr<RankExchange> exchange,
+             const RestartState& restart);
 
   void run(long long steps);  // advances `steps` time steps
   double time() const { return time_; }
@@ -48,7 +61,8 @@ class Simulation {
   const SceneSpec& scene() const { return scene_; }
   Backend backend() const { return options_.backend; }
   Index particle_count() const { return store_.n_owned; }  // owned by this rank
-  const RankExchange* exchange() const { return exchange_.get(); }
+  RankExchange* exchange() const { return exchange_.get(); }
+  const std::vector<Wall>& walls() const { return walls_; }  // posed at time()
 
   ParticleSnapshot snapshot() const;  // this rank's owned particles
   HostHistory history() const;  // in snapshot (id) order
@@ -56,11 +70,14 @@ class Simulation {
   const StepTimings& timings() const { return timings_; }
 
  private:
+  void set_up(const SceneSpec& scene);
   void upload(const std::vector<ParticleInit>& particles);
+  void restore(const RestartState& restart);
   void move_walls(double t);
   void rebuild_cells();
   void step_particles_between_ranks();
   void check_fault();
+  double phase_seconds(std::chrono::steady_clock::time_point start) const;
 
   SceneSpec scene_;
   RunOptions options_;

@@ -54,6 +54,10 @@ class StepKernels {
   // Appends particles after the current ones: as owned particles with their
   // history (only while there are no ghosts), or as ghosts.
   virtual void append(ParticleStore& s, const ParticleRecords& r, bool as_ghosts) = 0;
+  // Restores the forces and torques of owned particles (store order), as a
+  // restart needs them for its first half kick.
+  virtual void set_forces(const ParticleStore& s, const std::vector<Vec3d>& force,
+                          const std::vector<Vec3d>& torque) = 0;
 
   virtual std::size_t bytes() const = 0;  // memory held by forces, history and cell list
 };

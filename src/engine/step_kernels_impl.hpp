@@ -2,6 +2,8 @@
 // The per-step kernels, written once over an execution policy `Exec` (CpuExec
 // or CudaExec), which only decides who runs each per-particle functor and how
 // keys are sorted.
+#include <stdexcept>
+
 #include "engine/force_kernel.hpp"
 #include "engine/step_kernels.hpp"
 #include "neighbor/cell_list.hpp"
@@ -14,20 +16,6 @@ struct Gather {
   T* to;
   const Index* order;
   GS_HD void operator()(Index k) const { to[k] = from[order[k]]; }
-};
-
-// Gathers a slot-major history array slot by slot (no order: plain copy).
-template <class T>
-struct GatherSlots {
-  const T* from;
-  T* to;
-  const Index* order;
-  std::size_t stride;
-  Index n;
-  GS_HD void operator()(Index k) const {
-    const Index s = k / n, i = k % n;
-    to[s * stride + i] = from[s * stride + (order ? order[i] : i)];
-  }
 };
 
 template <class Exec, class Real, ContactModel Model, unsigned Effects>
@@ -51,7 +39,7 @@ class StepKernelsImpl final : public StepKernels {
   void reserve(Index n) override {
     forces_.force.resize(n);
     if (kTorque) forces_.torque.resize(n);
-    if (kHistory && std::size_t(n) > history_.stride) grow_history(std::size_t(n));
+    if (kHistory && std::size_t(n) > history_.capacity) grow_history(std::size_t(n));
   }
 
   void set_walls(const std::vector<Wall>& walls) override {
@@ -77,7 +65,7 @@ class StepKernelsImpl final : public StepKernels {
     ForceKernel<Real, Model, Effects> k{s.id.data(), s.material.data(), s.radius.data(), s.mass.data(),
                                         s.position.data(), s.velocity.data(), s.angular_velocity.data(),
                                         cells_.grid, cells_.sorted.data(), cells_.cell_begin.data(),
-                                        cells_.cell_end.data(), PairTable<Real>{pairs_.data(), n_materials_},
+                                        PairTable<Real>{pairs_.data(), n_materials_},
                                         walls_.data(), n_walls_, slot_table(), forces_.force.data(),
                                         kTorque ? forces_.torque.data() : nullptr, Real(dt), fault_.data(), step};
     Exec::parallel_for(s.n_owned, k);
@@ -102,6 +90,11 @@ class StepKernelsImpl final : public StepKernels {
                                    bool with_history) const override;
   void keep_owned(ParticleStore& s, const std::vector<Index>& keep) override;
   void append(ParticleStore& s, const ParticleRecords& r, bool as_ghosts) override;
+  void set_forces(const ParticleStore& s, const std::vector<Vec3d>& force, const std::vector<Vec3d>& torque) override {
+    forces_.force.from_host(narrowed(force, s.n_owned));
+    if (kTorque) forces_.torque.from_host(narrowed(torque, s.n_owned));
+    reserve(s.size());
+  }
   void set_history(const ParticleStore& s, const HostHistory& h) override;
 
   std::size_t bytes() const override {
@@ -117,10 +110,16 @@ class StepKernelsImpl final : public StepKernels {
   }
   SlotTable<Real, Effects> slot_table() {
     return SlotTable<Real, Effects>{history_.partner.data(), history_.tangential.data(), history_.rolling.data(),
-                                    history_.slots, history_.stride};
+                                    history_.slots, history_.strides};
   }
   void upload_pairs(const PairTableHost& t);
-  void grow_history(std::size_t stride);
+  void grow_history(std::size_t capacity);
+  static std::vector<Vec3<Real>> narrowed(const std::vector<Vec3d>& v, Index n) {
+    if (v.size() != std::size_t(n)) throw std::invalid_argument("one force per owned particle expected");
+    std::vector<Vec3<Real>> out(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i) out[i] = Vec3<Real>(v[i]);
+    return out;
+  }
   static std::vector<Vec3d> widen(const DeviceArray<Vec3<Real>>& a, Index n) {
     std::vector<Vec3<Real>> h = a.to_host();
     std::vector<Vec3d> out(n);

@@ -13,14 +13,36 @@ void gather_in_place(DeviceArray<T>& a, const Index* order, Index n, DeviceArray
   backend_copy(Exec::backend, a.data(), tmp, std::size_t(n) * sizeof(T));
 }
 
+// to[k * to_stride] = from[order[k] * from_stride] (order null: k).
+template <class T>
+struct GatherStrided {
+  const T* from;
+  std::size_t from_stride;
+  T* to;
+  std::size_t to_stride;
+  const Index* order;
+  GS_HD void operator()(Index k) const {
+    const std::size_t source = std::size_t(order ? order[k] : k);
+    to[std::size_t(k) * to_stride] = from[source * from_stride];
+  }
+};
+
+// One slot at a time, so the scratch is one particle array, not the whole
+// history (this keeps the peak memory of a step near what the run holds).
+// A slot's entries are `particle_stride` apart; slot-major makes them contiguous.
 template <class Exec, class T>
-void gather_slots_in_place(DeviceArray<T>& a, const Index* order, Index n, int slots, std::size_t stride,
+void gather_slots_in_place(DeviceArray<T>& a, const Index* order, Index n, int slots, const HistoryStrides& strides,
                            DeviceArray<unsigned char>& scratch) {
   if (a.size() == 0) return;
-  scratch.resize(a.size() * sizeof(T));
+  scratch.resize(std::size_t(n) * sizeof(T));
   T* tmp = reinterpret_cast<T*>(scratch.data());
-  Exec::parallel_for(Index(slots) * n, GatherSlots<T>{a.data(), tmp, order, stride, n});
-  Exec::parallel_for(Index(slots) * n, GatherSlots<T>{tmp, a.data(), nullptr, stride, n});
+  const std::size_t step = strides.particle_stride;
+  for (int s = 0; s < slots; ++s) {
+    T* column = a.data() + strides.at(s, 0);
+    Exec::parallel_for(n, GatherStrided<T>{column, step, tmp, 1, order});
+    if (step == 1) backend_copy(Exec::backend, column, tmp, std::size_t(n) * sizeof(T));
+    else Exec::parallel_for(n, GatherStrided<T>{tmp, 1, column, step, nullptr});
+  }
 }
 
 template <class Exec, class Real, ContactModel Model, unsigned Effects>
@@ -42,9 +64,9 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::reorder_by_cells(ParticleStore
   gather_in_place<Exec>(forces_.force, order, n, tmp);
   if (kTorque) gather_in_place<Exec>(forces_.torque, order, n, tmp);
   if (kHistory) {
-    gather_slots_in_place<Exec>(history_.partner, order, n, history_.slots, history_.stride, tmp);
-    gather_slots_in_place<Exec>(history_.tangential, order, n, history_.slots, history_.stride, tmp);
-    gather_slots_in_place<Exec>(history_.rolling, order, n, history_.slots, history_.stride, tmp);
+    gather_slots_in_place<Exec>(history_.partner, order, n, history_.slots, history_.strides, tmp);
+    gather_slots_in_place<Exec>(history_.tangential, order, n, history_.slots, history_.strides, tmp);
+    gather_slots_in_place<Exec>(history_.rolling, order, n, history_.slots, history_.strides, tmp);
   }
 }
 
@@ -62,29 +84,26 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::upload_pairs(const PairTableHo
   pairs_.from_host(p);
 }
 
-// History is slot-major with stride = capacity: growing re-lays it out.
+// Growing the capacity changes the strides of a slot-major history: the
+// entries are re-laid out (new particles start with free slots).
 template <class Exec, class Real, ContactModel Model, unsigned Effects>
-void StepKernelsImpl<Exec, Real, Model, Effects>::grow_history(std::size_t stride) {
-  const std::size_t old_stride = history_.stride;
-  const std::size_t slots = std::size_t(history_.slots);
-  auto relayout_partner = [&]() {
-    std::vector<ParticleId> host = history_.partner.to_host();
-    std::vector<ParticleId> fresh(slots * stride, kNoPartner);
-    for (std::size_t s = 0; s < slots; ++s)
-      for (std::size_t i = 0; i < old_stride; ++i) fresh[s * stride + i] = host[s * old_stride + i];
-    history_.partner.from_host(fresh);
-  };
-  auto relayout_springs = [&](DeviceArray<Vec3<Real>>& a) {
-    std::vector<Vec3<Real>> host = a.to_host();
-    std::vector<Vec3<Real>> fresh(slots * stride);
-    for (std::size_t s = 0; s < slots; ++s)
-      for (std::size_t i = 0; i < old_stride; ++i) fresh[s * stride + i] = host[s * old_stride + i];
+void StepKernelsImpl<Exec, Real, Model, Effects>::grow_history(std::size_t capacity) {
+  const std::size_t old_capacity = history_.capacity;
+  const HistoryStrides old = history_.strides;
+  const HistoryStrides fresh_strides = HistoryStrides::of(Exec::history_order, history_.slots, capacity);
+  const int slots = history_.slots;
+  auto relayout = [&](auto& a, auto empty) {
+    const auto host = a.to_host();
+    std::vector<decltype(empty)> fresh(std::size_t(slots) * capacity, empty);
+    for (int s = 0; s < slots; ++s)
+      for (std::size_t i = 0; i < old_capacity; ++i) fresh[fresh_strides.at(s, i)] = host[old.at(s, i)];
     a.from_host(fresh);
   };
-  relayout_partner();
-  if (Effects & kFriction) relayout_springs(history_.tangential);
-  if (Effects & kRollingResistance) relayout_springs(history_.rolling);
-  history_.stride = stride;
+  relayout(history_.partner, kNoPartner);
+  if (Effects & kFriction) relayout(history_.tangential, Vec3<Real>());
+  if (Effects & kRollingResistance) relayout(history_.rolling, Vec3<Real>());
+  history_.capacity = capacity;
+  history_.strides = fresh_strides;
 }
 
 template <class Exec, class Real, ContactModel Model, unsigned Effects>
@@ -93,7 +112,8 @@ HostHistory StepKernelsImpl<Exec, Real, Model, Effects>::history(const ParticleS
   h.slots = history_.slots;
   if (!kHistory) return h;
   const Index n = s.n_owned;
-  const std::size_t stride = history_.stride, slots = std::size_t(h.slots);
+  const HistoryStrides at = history_.strides;
+  const std::size_t slots = std::size_t(h.slots);
   const std::vector<ParticleId> partner = history_.partner.to_host();
   const std::vector<Vec3<Real>> tangential = history_.tangential.to_host();
   const std::vector<Vec3<Real>> rolling = history_.rolling.to_host();
@@ -102,9 +122,10 @@ HostHistory StepKernelsImpl<Exec, Real, Model, Effects>::history(const ParticleS
   h.rolling.resize(n * slots);
   for (Index i = 0; i < n; ++i)
     for (std::size_t k = 0; k < slots; ++k) {
-      h.partner[i * slots + k] = partner[k * stride + i];
-      if (!tangential.empty()) h.tangential[i * slots + k] = Vec3d(tangential[k * stride + i]);
-      if (!rolling.empty()) h.rolling[i * slots + k] = Vec3d(rolling[k * stride + i]);
+      const std::size_t e = at.at(int(k), std::size_t(i));
+      h.partner[i * slots + k] = partner[e];
+      if (!tangential.empty()) h.tangential[i * slots + k] = Vec3d(tangential[e]);
+      if (!rolling.empty()) h.rolling[i * slots + k] = Vec3d(rolling[e]);
     }
   return h;
 }
@@ -116,14 +137,16 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::set_history(const ParticleStor
     throw std::runtime_error("contact history has " + std::to_string(h.slots) + " slots per particle, this run uses " +
                              std::to_string(history_.slots));
   reserve(s.size());
-  const std::size_t stride = history_.stride, slots = std::size_t(h.slots);
-  std::vector<ParticleId> partner(slots * stride, kNoPartner);
-  std::vector<Vec3<Real>> tangential(slots * stride), rolling(slots * stride);
+  const HistoryStrides at = history_.strides;
+  const std::size_t slots = std::size_t(h.slots), entries = slots * history_.capacity;
+  std::vector<ParticleId> partner(entries, kNoPartner);
+  std::vector<Vec3<Real>> tangential(entries), rolling(entries);
   for (Index i = 0; i < s.n_owned; ++i)
     for (std::size_t k = 0; k < slots; ++k) {
-      partner[k * stride + i] = h.partner[i * slots + k];
-      if (!h.tangential.empty()) tangential[k * stride + i] = Vec3<Real>(h.tangential[i * slots + k]);
-      if (!h.rolling.empty()) rolling[k * stride + i] = Vec3<Real>(h.rolling[i * slots + k]);
+      const std::size_t e = at.at(int(k), std::size_t(i));
+      partner[e] = h.partner[i * slots + k];
+      if (!h.tangential.empty()) tangential[e] = Vec3<Real>(h.tangential[i * slots + k]);
+      if (!h.rolling.empty()) rolling[e] = Vec3<Real>(h.rolling[i * slots + k]);
     }
   history_.partner.from_host(partner);
   if (Effects & kFriction) history_.tangential.from_host(tangential);

@@ -6,18 +6,18 @@
 
 namespace gs {
 
-// History entries of particles `which`, slot-major with stride `stride`, into
-// a packed slot-major block with stride m.
+// History entries of particles `which`, laid out as `strides` says, into a
+// packed slot-major block with stride m.
 template <class T>
 struct GatherHistory {
   const T* from;
   T* to;
   const Index* which;
-  std::size_t stride;
+  HistoryStrides strides;
   Index m;
   GS_HD void operator()(Index k) const {
     const Index s = k / m, i = k % m;
-    to[std::size_t(s) * std::size_t(m) + std::size_t(i)] = from[std::size_t(s) * stride + std::size_t(which[i])];
+    to[std::size_t(s) * std::size_t(m) + std::size_t(i)] = from[strides.at(s, std::size_t(which[i]))];
   }
 };
 
@@ -26,12 +26,12 @@ template <class T>
 struct ScatterHistory {
   const T* from;
   T* to;
-  std::size_t stride;
+  HistoryStrides strides;
   Index first;
   Index m;
   GS_HD void operator()(Index k) const {
     const Index s = k / m, i = k % m;
-    to[std::size_t(s) * stride + std::size_t(first + i)] = from[std::size_t(s) * std::size_t(m) + std::size_t(i)];
+    to[strides.at(s, std::size_t(first + i))] = from[std::size_t(s) * std::size_t(m) + std::size_t(i)];
   }
 };
 
@@ -45,20 +45,20 @@ std::vector<T> gathered_to_host(const DeviceArray<T>& a, const DeviceArray<Index
 
 template <class Exec, class T>
 std::vector<T> gathered_history_to_host(const DeviceArray<T>& a, const DeviceArray<Index>& which, int slots,
-                                        std::size_t stride) {
+                                        const HistoryStrides& strides) {
   const Index m = Index(which.size());
   DeviceArray<T> packed(Exec::backend, std::size_t(slots) * std::size_t(m));
-  Exec::parallel_for(Index(slots) * m, GatherHistory<T>{a.data(), packed.data(), which.data(), stride, m});
+  Exec::parallel_for(Index(slots) * m, GatherHistory<T>{a.data(), packed.data(), which.data(), strides, m});
   return packed.to_host();
 }
 
 template <class Exec, class T>
-void scatter_history_from_host(DeviceArray<T>& a, const std::vector<T>& block, int slots, std::size_t stride,
+void scatter_history_from_host(DeviceArray<T>& a, const std::vector<T>& block, int slots, const HistoryStrides& strides,
                                Index first) {
   const Index m = Index(block.size() / std::size_t(slots));
   DeviceArray<T> packed(Exec::backend);
   packed.from_host(block);
-  Exec::parallel_for(Index(slots) * m, ScatterHistory<T>{packed.data(), a.data(), stride, first, m});
+  Exec::parallel_for(Index(slots) * m, ScatterHistory<T>{packed.data(), a.data(), strides, first, m});
 }
 
 template <class T>
@@ -90,12 +90,12 @@ ParticleRecords StepKernelsImpl<Exec, Real, Model, Effects>::export_particles(co
   HostHistory& h = r.history;
   h.slots = history_.slots;
   const std::vector<ParticleId> partner =
-      gathered_history_to_host<Exec>(history_.partner, w, history_.slots, history_.stride);
+      gathered_history_to_host<Exec>(history_.partner, w, history_.slots, history_.strides);
   h.partner.resize(m * slots);
   for (std::size_t i = 0; i < m; ++i)
     for (std::size_t k = 0; k < slots; ++k) h.partner[i * slots + k] = partner[k * m + i];
   auto widen_springs = [&](const DeviceArray<Vec3<Real>>& a, std::vector<Vec3d>& out) {
-    const std::vector<Vec3<Real>> block = gathered_history_to_host<Exec>(a, w, history_.slots, history_.stride);
+    const std::vector<Vec3<Real>> block = gathered_history_to_host<Exec>(a, w, history_.slots, history_.strides);
     out.resize(m * slots);
     for (std::size_t i = 0; i < m; ++i)
       for (std::size_t k = 0; k < slots; ++k) out[i * slots + k] = Vec3d(block[k * m + i]);
@@ -124,9 +124,9 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::keep_owned(ParticleStore& s, c
   gather_in_place<Exec>(forces_.force, order.data(), n, tmp);
   if (kTorque) gather_in_place<Exec>(forces_.torque, order.data(), n, tmp);
   if (kHistory) {
-    gather_slots_in_place<Exec>(history_.partner, order.data(), n, history_.slots, history_.stride, tmp);
-    gather_slots_in_place<Exec>(history_.tangential, order.data(), n, history_.slots, history_.stride, tmp);
-    gather_slots_in_place<Exec>(history_.rolling, order.data(), n, history_.slots, history_.stride, tmp);
+    gather_slots_in_place<Exec>(history_.partner, order.data(), n, history_.slots, history_.strides, tmp);
+    gather_slots_in_place<Exec>(history_.tangential, order.data(), n, history_.slots, history_.strides, tmp);
+    gather_slots_in_place<Exec>(history_.rolling, order.data(), n, history_.slots, history_.strides, tmp);
   }
   s.n_owned = n;
   s.drop_ghosts();
@@ -160,12 +160,12 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::append(ParticleStore& s, const
   std::vector<ParticleId> partner(slots * count);
   for (std::size_t i = 0; i < count; ++i)
     for (std::size_t k = 0; k < slots; ++k) partner[k * count + i] = h.partner[i * slots + k];
-  scatter_history_from_host<Exec>(history_.partner, partner, h.slots, history_.stride, Index(first));
+  scatter_history_from_host<Exec>(history_.partner, partner, h.slots, history_.strides, Index(first));
   auto narrow_springs = [&](const std::vector<Vec3d>& from, DeviceArray<Vec3<Real>>& a) {
     std::vector<Vec3<Real>> block(slots * count);
     for (std::size_t i = 0; i < count; ++i)
       for (std::size_t k = 0; k < slots; ++k) block[k * count + i] = Vec3<Real>(from[i * slots + k]);
-    scatter_history_from_host<Exec>(a, block, h.slots, history_.stride, Index(first));
+    scatter_history_from_host<Exec>(a, block, h.slots, history_.strides, Index(first));
   };
   if constexpr ((Effects & kFriction) != 0) narrow_springs(h.tangential, history_.tangential);
   if constexpr ((Effects & kRollingResistance) != 0) narrow_springs(h.rolling, history_.rolling);

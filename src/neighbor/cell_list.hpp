@@ -2,6 +2,10 @@
 // Cell list rebuilt every step: particles are sorted by the key (cell, id),
 // then each cell's range in the sorted order is recorded. Sorting by id within
 // a cell is what makes every particle's contact sum canonical.
+//
+// The ranges are kept as offsets (cell c holds sorted[cell_begin[c],
+// cell_begin[c + 1]), empty cells included), so the cells of one row of the
+// grid, consecutive in x, form one contiguous range in `sorted`.
 #include <cstdint>
 
 #include "backend/device_array.hpp"
@@ -12,18 +16,18 @@ namespace gs {
 
 struct CellList {
   explicit CellList(Backend b)
-      : keys(b), keys_alt(b), sorted(b), sorted_alt(b), cell_begin(b), cell_end(b), sort_scratch(b) {}
+      : keys(b), keys_alt(b), sorted(b), sorted_alt(b), cell_begin(b), sort_scratch(b) {}
 
   CellGrid grid;
   DeviceArray<std::uint64_t> keys, keys_alt;
   DeviceArray<Index> sorted, sorted_alt;
-  DeviceArray<Index> cell_begin, cell_end;
+  DeviceArray<Index> cell_begin;  // per cell + 1: offsets in `sorted`
   DeviceArray<unsigned char> sort_scratch;
   int key_bits = 64;
 
   std::size_t bytes() const {
     return keys.bytes() + keys_alt.bytes() + sorted.bytes() + sorted_alt.bytes() + cell_begin.bytes() +
-           cell_end.bytes() + sort_scratch.bytes();
+           sort_scratch.bytes();
   }
 };
 
@@ -39,15 +43,36 @@ struct CellKeys {
   }
 };
 
-struct CellRanges {
+// Offsets from the particles' side, item k in [0, n]: every cell after the
+// cell of particle k - 1, up to the cell of particle k, starts at k. The work
+// is O(n + cells) in all, but one item walks a whole empty stretch of cells.
+struct CellBeginsByParticle {
+  const std::uint64_t* keys;
+  Index n;
+  std::int64_t cells;
+  Index* cell_begin;
+  GS_HD void operator()(Index k) const {
+    const std::int64_t first = k == 0 ? 0 : std::int64_t(keys[k - 1] >> 32) + 1;
+    const std::int64_t last = k == n ? cells : std::int64_t(keys[k] >> 32);
+    for (std::int64_t c = first; c <= last; ++c) cell_begin[c] = k;
+  }
+};
+
+// Offsets from the cells' side, item c in [0, cells]: a binary search for the
+// first particle in cell c or after it. Each item does O(log n) work.
+struct CellBeginsByCell {
   const std::uint64_t* keys;
   Index n;
   Index* cell_begin;
-  Index* cell_end;
-  GS_HD void operator()(Index k) const {
-    const std::uint64_t cell = keys[k] >> 32;
-    if (k == 0 || (keys[k - 1] >> 32) != cell) cell_begin[cell] = k;
-    if (k == n - 1 || (keys[k + 1] >> 32) != cell) cell_end[cell] = k + 1;
+  GS_HD void operator()(Index c) const {
+    const std::uint64_t first_key = std::uint64_t(c) << 32;
+    Index lo = 0, hi = n;
+    while (lo < hi) {
+      const Index mid = lo + (hi - lo) / 2;
+      if (keys[mid] < first_key) lo = mid + 1;
+      else hi = mid;
+    }
+    cell_begin[c] = lo;
   }
 };
 
@@ -64,14 +89,14 @@ void build_cells(CellList& c, const Vec3d* position, const ParticleId* id, Index
   c.keys_alt.resize(n);
   c.sorted.resize(n);
   c.sorted_alt.resize(n);
-  c.cell_begin.resize(std::size_t(grid.cell_count()));
-  c.cell_end.resize(std::size_t(grid.cell_count()));
+  c.cell_begin.resize(std::size_t(grid.cell_count()) + 1);
   c.key_bits = 32 + bits_needed(std::uint64_t(grid.cell_count() - 1));
   Exec::parallel_for(n, CellKeys{position, id, grid, c.keys.data(), c.sorted.data()});
   Exec::sort_pairs(c, n);
-  c.cell_begin.zero();
-  c.cell_end.zero();
-  Exec::parallel_for(n, CellRanges{c.keys.data(), n, c.cell_begin.data(), c.cell_end.data()});
+  if constexpr (Exec::cell_begins_by_particle)
+    Exec::parallel_for(n + 1, CellBeginsByParticle{c.keys.data(), n, grid.cell_count(), c.cell_begin.data()});
+  else
+    Exec::parallel_for(Index(grid.cell_count() + 1), CellBeginsByCell{c.keys.data(), n, c.cell_begin.data()});
 }
 
 }  // namespace gs

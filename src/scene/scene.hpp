@@ -46,6 +46,10 @@ struct ParticleInit {
 struct OutputSpec {
   double interval = 0;     // simulated seconds between snapshots; 0: final only
   std::string directory = "out";
+  std::string format = "hdf5";           // hdf5 (with an XDMF index) or csv
+  std::vector<std::string> fields;       // snapshot fields; empty: the default set (docs/OUTPUT.md)
+  double checkpoint_interval = 0;        // simulated seconds between checkpoints; 0: none
+  double checkpoint_minutes = 0;         // wall-clock minutes between checkpoints; 0: none
 };
 
 enum class DecompositionMethod { slabs, metis };

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "contact/contact_time.hpp"
+#include "io/snapshot_fields.hpp"
 #include "scene/generators.hpp"
 #include "scene/scene_sections.hpp"
 
@@ -52,9 +53,22 @@ void parse_globals(const Map& top, SceneSpec& s) {
   }
   s.duration = positive(top.get("duration"));
   if (top.has("output")) {
-    const Map o(top.get("output"), {"interval", "directory"});
+    const Map o(top.get("output"),
+                {"interval", "directory", "format", "fields", "checkpoint_interval", "checkpoint_minutes"});
     s.output.interval = number_or(o, "interval", 0.0, nonnegative);
     if (o.has("directory")) s.output.directory = text(o.get("directory"));
+    if (o.has("format")) s.output.format = choice(o.get("format"), {"hdf5", "csv"});
+    if (o.has("fields")) {
+      const Val list = o.get("fields");
+      for_each_item(list, [&](const Val& item, std::size_t) { s.output.fields.push_back(text(item)); });
+      try {
+        parse_snapshot_fields(s.output.fields);
+      } catch (const std::invalid_argument& e) {
+        fail(list, e.what());
+      }
+    }
+    s.output.checkpoint_interval = number_or(o, "checkpoint_interval", 0.0, nonnegative);
+    s.output.checkpoint_minutes = number_or(o, "checkpoint_minutes", 0.0, nonnegative);
   }
   if (top.has("contact_slots")) s.contact_slots = int(integer(top.get("contact_slots"), 1, kMaxContactSlots));
   if (top.has("decomposition")) parse_decomposition(Map(top.get("decomposition"), {"method", "axis", "rebalance_threshold"}), s);

@@ -1,17 +1,29 @@
 #pragma once
 // CPU execution policy: OpenMP over particles, an O(N) radix sort for keys.
 #include "backend/backend.hpp"
+#include "core/history_layout.hpp"
 #include "neighbor/cell_list.hpp"
 
 namespace gs {
 
 struct CpuExec {
   static constexpr Backend backend = Backend::cpu;
+  // One thread walks all slots of its particle: keep them in one cache line.
+  static constexpr HistoryOrder history_order = HistoryOrder::particle_major;
+  // Cell offsets in one O(n + cells) walk over the sorted particles.
+  static constexpr bool cell_begins_by_particle = true;
 
+  // Each thread calls its own copy of the functor: the compiler then knows
+  // that no store through the functor's output pointers changes its fields,
+  // so they stay in registers instead of being reloaded around every store.
   template <class F>
   static void parallel_for(Index n, const F& f) {
-#pragma omp parallel for schedule(static)
-    for (Index i = 0; i < n; ++i) f(i);
+#pragma omp parallel
+    {
+      const F local = f;
+#pragma omp for schedule(static)
+      for (Index i = 0; i < n; ++i) local(i);
+    }
   }
 
   // Sorts c.keys[0,n) ascending, carrying c.sorted along.

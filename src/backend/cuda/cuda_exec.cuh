@@ -3,6 +3,7 @@
 #include <cub/device/device_radix_sort.cuh>
 
 #include "backend/check.hpp"
+#include "core/history_layout.hpp"
 #include "neighbor/cell_list.hpp"
 
 namespace gs {
@@ -16,6 +17,10 @@ __global__ void for_each_kernel(Index n, F f) {
 struct CudaExec {
   static constexpr Backend backend = Backend::cuda;
   static constexpr int kBlock = 128;
+  // Neighbouring threads read the same slot of neighbouring particles: coalesced.
+  static constexpr HistoryOrder history_order = HistoryOrder::slot_major;
+  // Cell offsets one thread per cell, so no thread walks a long empty stretch.
+  static constexpr bool cell_begins_by_particle = false;
 
   template <class F>
   static void parallel_for(Index n, const F& f) {

@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# One session on a GPU machine: build with CUDA, run the whole test suite on
+# both backends, compare CPU and GPU runs of the demo, then the benchmarks.
+# Results go to $OUT (default ./device_out). Usage, from the repository root:
+#   bench/device_session.sh [all|tests|bench]
+# METIS and yaml-cpp may be carried as unpacked Debian packages in carry/root
+# (see docs/PERFORMANCE.md) when the machine lacks them.
+set -uo pipefail
+what=${1:-all}
+root=$(pwd)
+OUT=${OUT:-$root/device_out}
+mkdir -p "$OUT"
+if [[ -d carry/root/usr ]]; then
+  export CMAKE_PREFIX_PATH=$root/carry/root/usr
+  export LD_LIBRARY_PATH=$root/carry/root/usr/lib/x86_64-linux-gnu:${LD_LIBRARY_PATH:-}
+  extra=(-DMETIS_INCLUDE_DIR=$root/carry/root/usr/include
+         -DMETIS_LIBRARY=$root/carry/root/usr/lib/x86_64-linux-gnu/libmetis.so)
+else
+  extra=()
+fi
+export PATH=/usr/local/cuda/bin:$PATH
+log=$OUT/session.log
+{
+  date -u; nvidia-smi --query-gpu=name,memory.total,driver_version --format=csv; git rev-parse HEAD 2>/dev/null
+  git status --short 2>/dev/null | head -20
+} > "$log" 2>&1
+cmake -S . -B build-gpu -DCMAKE_BUILD_TYPE=Release -DGS_ENABLE_CUDA=ON "${extra[@]}" >> "$log" 2>&1 &&
+  cmake --build build-gpu -j 16 >> "$log" 2>&1 || { echo "BUILD FAILED" >> "$log"; tail -50 "$log"; exit 1; }
+echo "build ok" >> "$log"
+
+if [[ $what == all || $what == tests ]]; then
+  (cd build-gpu && GS_TEST_BACKENDS=cpu,cuda OMP_NUM_THREADS=4 ctest -j 4 --timeout 300 --output-on-failure \
+     > "$OUT/ctest_gpu.log" 2>&1)
+  tail -25 "$OUT/ctest_gpu.log" >> "$log"
+  # CPU against GPU on the demo scene, and 2 ranks sharing the GPU against 1.
+  demo=cases/demo/settle.yaml
+  g=build-gpu/src/grainstorm
+  {
+    $g run $demo --backend cpu --out /tmp/demo_cpu 2>&1 | tail -3
+    $g run $demo --backend cuda --out /tmp/demo_gpu 2>&1 | tail -3
+    mpirun --allow-run-as-root --oversubscribe -np 2 $g run $demo --backend cuda --out /tmp/demo_gpu2 2>&1 | tail -3
+    python3 bench/compare_snapshots.py /tmp/demo_cpu /tmp/demo_gpu /tmp/demo_gpu2
+  } >> "$log" 2>&1
+fi
+
+if [[ $what == all || $what == bench ]]; then
+  b=build-gpu/bench/settle_bench
+  {
+    for n in 100000 1000000 4000000 16000000; do $b --backend cuda --n $n --steps 200; done
+    for e in none friction rolling cohesion; do $b --backend cuda --n 4000000 --steps 200 --effects $e; done
+    $b --backend cuda --n 4000000 --steps 200 --precision fp64
+    $b --backend cuda --n 4000000 --steps 200 --model hertz
+    OMP_NUM_THREADS=1 $b --backend cpu --n 100000 --steps 50
+    OMP_NUM_THREADS=16 $b --backend cpu --n 1000000 --steps 50
+  } > "$OUT/bench.log" 2>&1
+  cat "$OUT/bench.log" >> "$log"
+fi
+cat "$log"

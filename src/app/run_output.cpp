@@ -1,0 +1,111 @@
+#include "app/run_output.hpp"
+
+#include <cstdarg>
+#include <filesystem>
+#include <stdexcept>
+
+#include "comm/snapshot_gather.hpp"
+#include "io/h5_snapshot.hpp"
+#include "io/particle_csv.hpp"
+#include "io/restart.hpp"
+
+namespace gs {
+namespace {
+
+std::FILE* open_for_append(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "a");
+  if (!f) throw std::runtime_error("cannot write " + path);
+  return f;
+}
+
+// Contacts per particle from the history (particle-particle and wall).
+std::vector<std::uint16_t> contact_counts(const HostHistory& h, std::size_t n) {
+  std::vector<std::uint16_t> c(n, 0);
+  if (h.slots == 0) return c;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int s = 0; s < h.slots; ++s) c[i] += h.partner[i * std::size_t(h.slots) + std::size_t(s)] != kNoPartner;
+  return c;
+}
+
+}  // namespace
+
+RunOutput::RunOutput(const SceneSpec& scene, const std::string& directory, Transport& transport,
+                     std::uint64_t scene_hash)
+    : scene_(scene), directory_(directory), transport_(transport), scene_hash_(scene_hash) {
+  fields_ = scene.output.fields.empty() ? default_snapshot_fields() : parse_snapshot_fields(scene.output.fields);
+  if (fields_.has(SnapshotField::contact_count) && !uses_history(scene.effects))
+    throw std::invalid_argument("output.fields: contact_count needs friction or rolling resistance (contact history)");
+  if (transport_.rank() != 0) return;
+  std::filesystem::create_directories(directory_);
+  log_ = open_for_append(directory_ + "/run.log");
+  timeseries_ = open_for_append(directory_ + "/timeseries.csv");
+  if (std::ftell(timeseries_) == 0)
+    std::fprintf(timeseries_, "step,time,particles,kinetic_energy_translational,kinetic_energy_rotational,"
+                              "max_speed,contacts\n");
+}
+
+RunOutput::~RunOutput() {
+  if (log_) std::fclose(log_);
+  if (timeseries_) std::fclose(timeseries_);
+}
+
+void RunOutput::log(const char* format, ...) {
+  if (transport_.rank() != 0) return;
+  for (std::FILE* f : {stdout, log_}) {
+    std::va_list args;
+    va_start(args, format);
+    std::vfprintf(f, format, args);
+    va_end(args);
+    std::fflush(f);
+  }
+}
+
+void RunOutput::snapshot(const Simulation& sim) {
+  const ParticleSnapshot local = sim.snapshot();
+  const ParticleSnapshot s = gather_snapshot(transport_, local);
+  const bool need_history = uses_history(scene_.effects);
+  const HostHistory h = need_history ? gather_history(transport_, local.id, sim.history()) : HostHistory();
+  if (transport_.rank() != 0) return;
+  const std::vector<std::uint16_t> contacts = contact_counts(h, s.size());
+  if (scene_.output.format == "csv") {
+    write_particles_csv(directory_ + "/" + snapshot_file_name(s.step), s);
+  } else {
+    SnapshotMetadata m;
+    m.scene_hash = scene_hash_;
+    m.scene_path = scene_.path;
+    m.wall_names = scene_.wall_names;
+    if (fields_.has(SnapshotField::contact_count)) m.contact_count = contacts;
+    const std::string name = snapshot_h5_name(s.step);
+    write_snapshot(directory_ + "/" + name, s, fields_, sim.walls(), m);
+    series_.push_back(xdmf_entry(name, s, fields_));
+    write_xdmf_series(directory_ + "/particles.xdmf", series_);
+  }
+  double translational = 0, rotational = 0, max_speed = 0;
+  long long n_contacts = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    translational += 0.5 * s.mass[i] * norm2(s.velocity[i]);
+    rotational += 0.5 * s.inertia[i] * norm2(s.angular_velocity[i]);
+    max_speed = std::max(max_speed, norm(s.velocity[i]));
+    n_contacts += contacts[i];
+  }
+  std::fprintf(timeseries_, "%lld,%.17g,%zu,%.17g,%.17g,%.17g,%lld\n", s.step, s.time, s.size(), translational,
+               rotational, max_speed, need_history ? n_contacts : -1LL);
+  std::fflush(timeseries_);
+}
+
+void RunOutput::checkpoint(const Simulation& sim) {
+  const ParticleSnapshot local = sim.snapshot();
+  const ParticleSnapshot s = gather_snapshot(transport_, local);
+  const HostHistory h = gather_history(transport_, local.id, sim.history());
+  if (transport_.rank() != 0) return;
+  const std::string path = directory_ + "/" + checkpoint_h5_name(s.step);
+  write_checkpoint(path, make_checkpoint(s, h, sim.walls(), scene_hash_, transport_.size()));
+  checkpoints_.push_back(path);
+  while (checkpoints_.size() > 2) {
+    std::filesystem::remove(checkpoints_.front());
+    checkpoints_.erase(checkpoints_.begin());
+  }
+  log("checkpoint: %s\n", path.c_str());
+}
+
+}  // namespace gs

@@ -1,0 +1,21 @@
+#include "app/stop_signal.hpp"
+
+#include <csignal>
+
+namespace gs {
+namespace {
+
+volatile std::sig_atomic_t g_stop = 0;
+
+extern "C" void on_stop_signal(int) { g_stop = 1; }
+
+}  // namespace
+
+void install_stop_signals() {
+  std::signal(SIGTERM, on_stop_signal);
+  std::signal(SIGUSR1, on_stop_signal);
+}
+
+bool stop_requested() { return g_stop != 0; }
+
+}  // namespace gs

@@ -1,0 +1,40 @@
+#include "io/restart.hpp"
+
+namespace gs {
+
+Checkpoint make_checkpoint(const ParticleSnapshot& all, const HostHistory& history, const std::vector<Wall>& walls,
+                           std::uint64_t scene_hash, int rank_count) {
+  Checkpoint c;
+  c.step = all.step;
+  c.time = all.time;
+  c.particles = all;
+  c.history = history;
+  c.walls = walls;
+  c.scene_hash = scene_hash;
+  c.rank_count = rank_count;
+  c.decomposition_axis = -1;  // the partition is recomputed on restart, for any rank count
+  return c;
+}
+
+RestartState restart_state(const Checkpoint& c) {
+  RestartState r;
+  r.step = c.step;
+  r.time = c.time;
+  const ParticleSnapshot& p = c.particles;
+  r.particles.id = p.id;
+  r.particles.material = p.material;
+  r.particles.marker = p.marker;
+  r.particles.radius = p.radius;
+  r.particles.mass = p.mass;
+  r.particles.inertia = p.inertia;
+  r.particles.position = p.position;
+  r.particles.velocity = p.velocity;
+  r.particles.angular_velocity = p.angular_velocity;
+  r.particles.orientation = p.orientation;
+  r.particles.history = c.history;
+  r.force = p.force;
+  r.torque = p.torque;
+  return r;
+}
+
+}  // namespace gs

@@ -1,0 +1,13 @@
+#pragma once
+// Between a checkpoint file and the state a Simulation continues from.
+#include "engine/simulation.hpp"
+#include "io/checkpoint.hpp"
+
+namespace gs {
+
+// The checkpoint of a whole run: `all` and `history` hold every particle, in id order.
+Checkpoint make_checkpoint(const ParticleSnapshot& all, const HostHistory& history, const std::vector<Wall>& walls,
+                           std::uint64_t scene_hash, int rank_count);
+RestartState restart_state(const Checkpoint& c);
+
+}  // namespace gs

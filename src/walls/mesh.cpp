@@ -1,0 +1,158 @@
+#include "walls/mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <tuple>
+
+#include "walls/sphere_triangle.hpp"
+
+namespace gs {
+
+MeshView MeshSet::view() const {
+  MeshView v;
+  v.vertex = vertex.data();
+  v.corners = corners.data();
+  v.edges = edges.data();
+  v.edge_ends = edge_ends.data();
+  v.owned = owned.data();
+  v.crease_cos = crease_cos.data();
+  v.mesh = mesh.data();
+  v.pose = pose.data();
+  v.material = material.data();
+  v.n_triangles = n_triangles();
+  v.n_meshes = n_meshes();
+  return v;
+}
+
+std::int32_t add_mesh(MeshSet& set, const TriangleMesh& mesh, std::int32_t material, const MeshMotion& motion,
+                      double crease_angle_deg) {
+  const std::string where = "mesh '" + mesh.name + "'";
+  validate_mesh(mesh, where);
+  if (!(crease_angle_deg >= 0 && crease_angle_deg < 90))
+    throw std::invalid_argument(where + ": crease angle must lie in [0, 90) degrees");
+  constexpr std::int64_t kLimit = std::numeric_limits<std::int32_t>::max() / 2;
+  if (std::int64_t(set.vertex.size()) + std::int64_t(mesh.vertices.size()) > kLimit ||
+      std::int64_t(set.corners.size()) + std::int64_t(mesh.triangles.size()) > kLimit)
+    throw std::runtime_error(where + ": too many vertices or triangles in the scene's meshes");
+
+  const std::int32_t id = set.n_meshes();
+  const std::int32_t v0 = set.n_vertices();
+  const std::int32_t t0 = set.n_triangles();
+  if (set.vertex_begin.empty()) set.vertex_begin.push_back(0);
+  if (set.triangle_begin.empty()) set.triangle_begin.push_back(0);
+  set.names.push_back(mesh.name);
+  set.material.push_back(material);
+  set.crease_cos.push_back(std::cos(crease_angle_deg * 3.14159265358979323846 / 180));
+  set.motion.push_back(motion);
+  set.pose.push_back(mesh_pose(motion, 0.0));
+  set.reference.insert(set.reference.end(), mesh.vertices.begin(), mesh.vertices.end());
+  for (const Vec3d& x : mesh.vertices) set.vertex.push_back(pose_point(set.pose.back(), x));
+  set.vertex_begin.push_back(set.n_vertices());
+
+  const std::size_t nt = mesh.triangles.size();
+  std::vector<bool> vertex_seen(mesh.vertices.size(), false);
+  for (std::size_t t = 0; t < nt; ++t) {
+    MeshCorners c;
+    std::uint8_t owned = 0;
+    for (int k = 0; k < 3; ++k) {
+      c.v[k] = v0 + mesh.triangles[t][k];
+      if (!vertex_seen[mesh.triangles[t][k]]) {
+        vertex_seen[mesh.triangles[t][k]] = true;
+        owned |= std::uint8_t(kOwnsVertex0 << k);  // first (lowest-index) user owns the vertex
+      }
+    }
+    set.corners.push_back(c);
+    set.edges.push_back(MeshEdges{{-1, -1, -1}});
+    set.owned.push_back(owned);
+    set.mesh.push_back(id);
+  }
+
+  // Edges: (lo, hi, triangle, k) sorted, so the uses of one edge are adjacent
+  // and in ascending triangle order; numbering follows (lo, hi).
+  std::vector<std::tuple<std::int32_t, std::int32_t, std::int32_t, int>> uses;
+  uses.reserve(3 * nt);
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+      uses.emplace_back(std::min(a, b), std::max(a, b), t0 + std::int32_t(t), k);
+    }
+  std::sort(uses.begin(), uses.end());
+  for (std::size_t i = 0; i < uses.size(); ++i) {
+    const auto [lo, hi, t, k] = uses[i];
+    const bool first = i == 0 || std::get<0>(uses[i - 1]) != lo || std::get<1>(uses[i - 1]) != hi;
+    if (first) {
+      ++set.n_edges;
+      set.owned[t] |= std::uint8_t(kOwnsEdge0 << k);
+      set.edge_ends.push_back(EdgeEnds{{v0 + lo, v0 + hi}});
+    }
+    set.edges[t].e[k] = set.n_edges - 1;
+  }
+  set.triangle_begin.push_back(set.n_triangles());
+  return id;
+}
+
+void move_meshes(MeshSet& set, double time) {
+  for (std::int32_t m = 0; m < set.n_meshes(); ++m) {
+    set.pose[m] = mesh_pose(set.motion[m], time);
+    pose_vertices(set.pose[m], set.reference.data(), set.vertex.data(), std::size_t(set.vertex_begin[m]),
+                  std::size_t(set.vertex_begin[m + 1]));
+  }
+}
+
+namespace {
+
+// Calls visit(cell) for every cell the triangle is binned in, in ascending
+// linear order (z, then y, then x).
+template <class Visit>
+void for_each_binned_cell(const MeshSet& set, std::int32_t t, const CellGrid& grid, const BinningOptions& o,
+                          Visit&& visit) {
+  const Vec3d& a = set.vertex[set.corners[t].v[0]];
+  const Vec3d& b = set.vertex[set.corners[t].v[1]];
+  const Vec3d& c = set.vertex[set.corners[t].v[2]];
+  const Vec3d lo(std::min({a.x, b.x, c.x}) - o.reach, std::min({a.y, b.y, c.y}) - o.reach,
+                 std::min({a.z, b.z, c.z}) - o.reach);
+  const Vec3d hi(std::max({a.x, b.x, c.x}) + o.reach, std::max({a.y, b.y, c.y}) + o.reach,
+                 std::max({a.z, b.z, c.z}) + o.reach);
+  const CellCoord cl = grid.coord(lo), ch = grid.coord(hi);
+  // Slack for rounding in the pruning distance: never drop a cell wrongly.
+  const double keep = (o.reach + 0.5 * std::sqrt(3.0) * grid.cell_size) * (1 + 1e-9);
+  for (int z = cl.z; z <= ch.z; ++z)
+    for (int y = cl.y; y <= ch.y; ++y)
+      for (int x = cl.x; x <= ch.x; ++x) {
+        if (o.prune_by_distance) {
+          const Vec3d centre = grid.origin + Vec3d(x + 0.5, y + 0.5, z + 0.5) * grid.cell_size;
+          if (closest_point_on_triangle(centre, a, b, c).distance > keep) continue;
+        }
+        visit(grid.linear({x, y, z}));
+      }
+}
+
+}  // namespace
+
+MeshBins bin_triangles(const MeshSet& set, const CellGrid& grid, const BinningOptions& options) {
+  if (!(options.reach >= 0)) throw std::invalid_argument("mesh binning reach must be >= 0");
+  const std::int64_t cells = grid.cell_count();
+  MeshBins bins;
+  bins.cell_begin.assign(std::size_t(cells) + 1, 0);
+  // Counting sort: count per cell, prefix sums, then fill in triangle order,
+  // which leaves every cell's list ascending.
+  std::int64_t total = 0;
+  for (std::int32_t t = 0; t < set.n_triangles(); ++t)
+    for_each_binned_cell(set, t, grid, options, [&](std::int64_t cell) {
+      ++bins.cell_begin[cell + 1];
+      ++total;
+    });
+  if (total > std::numeric_limits<std::int32_t>::max())
+    throw std::runtime_error("mesh binning: " + std::to_string(total) +
+                             " (cell, triangle) entries exceed the 32-bit index range; use larger cells or a coarser mesh");
+  for (std::int64_t c = 0; c < cells; ++c) bins.cell_begin[c + 1] += bins.cell_begin[c];
+  bins.triangles.resize(std::size_t(total));
+  std::vector<std::int32_t> fill(bins.cell_begin.begin(), bins.cell_begin.end() - 1);
+  for (std::int32_t t = 0; t < set.n_triangles(); ++t)
+    for_each_binned_cell(set, t, grid, options, [&](std::int64_t cell) { bins.triangles[fill[cell]++] = t; });
+  return bins;
+}
+
+}  // namespace gs

@@ -1,0 +1,143 @@
+#pragma once
+// Triangle-mesh walls laid out for the kernels: flat arrays over all meshes of
+// a scene (a MeshSet on the host, a MeshView of plain pointers in a kernel),
+// and the binning of triangles into the cells of the particle CellGrid in CSR
+// form. Vertices are never shared between meshes, so every edge and vertex
+// belongs to one mesh. See docs/MESHES.md.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/hd.hpp"
+#include "core/vec3.hpp"
+#include "neighbor/cell_grid.hpp"
+#include "walls/mesh_motion.hpp"
+#include "walls/triangle_mesh.hpp"
+
+namespace gs {
+
+// Corner k of a triangle is corners.v[k]; edge k joins corners k and (k+1)%3.
+struct MeshCorners {
+  std::int32_t v[3];  // vertex indices into the set's vertex arrays
+};
+struct MeshEdges {
+  std::int32_t e[3];  // edge indices, numbered over the whole set
+};
+struct EdgeEnds {
+  std::int32_t v[2];  // the edge's vertices, lower index first
+};
+
+// Bits of MeshSet::owned: the triangle owns edge k (bit k) or corner k (bit
+// 3 + k). Each edge and each vertex is owned by exactly one triangle, the
+// lowest-index one that uses it.
+constexpr std::uint8_t kOwnsEdge0 = 1u << 0;
+constexpr std::uint8_t kOwnsVertex0 = 1u << 3;
+
+// What a kernel reads. All arrays are indexed by triangle unless noted.
+struct MeshView {
+  const Vec3d* vertex = nullptr;             // per vertex, current pose [m]
+  const MeshCorners* corners = nullptr;
+  const MeshEdges* edges = nullptr;
+  const EdgeEnds* edge_ends = nullptr;       // per edge
+  const std::uint8_t* owned = nullptr;
+  const std::int32_t* mesh = nullptr;        // mesh id of the triangle
+  const MeshPose* pose = nullptr;            // per mesh: current pose and velocity field
+  const std::int32_t* material = nullptr;    // per mesh: material index
+  const double* crease_cos = nullptr;        // per mesh: cos(crease angle), rule F of sphere_triangle.hpp
+  std::int32_t n_triangles = 0;
+  std::int32_t n_meshes = 0;
+  // Binning (MeshBins) on the particle grid.
+  const std::int32_t* cell_begin = nullptr;  // per cell + 1: range in cell_triangles
+  const std::int32_t* cell_triangles = nullptr;
+
+  // Triangles that may touch a sphere centred in the cell of x, ascending.
+  GS_HD void cell_range(const CellGrid& grid, const Vec3d& x, std::int32_t& begin, std::int32_t& end) const {
+    const std::int64_t cell = grid.linear(grid.coord(x));
+    begin = cell_begin[cell];
+    end = cell_begin[cell + 1];
+  }
+  GS_HD bool has_vertex(std::int32_t t, std::int32_t v) const {
+    const MeshCorners& c = corners[t];
+    return c.v[0] == v || c.v[1] == v || c.v[2] == v;
+  }
+  GS_HD bool has_edge(std::int32_t t, std::int32_t e) const {
+    const MeshEdges& c = edges[t];
+    return c.e[0] == e || c.e[1] == e || c.e[2] == e;
+  }
+  GS_HD bool shares_vertex(std::int32_t t, std::int32_t u) const {
+    const MeshCorners& c = corners[u];
+    return has_vertex(t, c.v[0]) || has_vertex(t, c.v[1]) || has_vertex(t, c.v[2]);
+  }
+};
+
+// Host storage of all meshes of a scene, concatenated in input order.
+struct MeshSet {
+  std::vector<std::string> names;             // per mesh
+  std::vector<std::int32_t> vertex_begin;     // per mesh + 1
+  std::vector<std::int32_t> triangle_begin;   // per mesh + 1
+  std::vector<std::int32_t> material;         // per mesh
+  std::vector<double> crease_cos;             // per mesh: cos(crease angle)
+  std::vector<MeshMotion> motion;             // per mesh
+  std::vector<MeshPose> pose;                 // per mesh, at the time of the last move_meshes
+  std::vector<Vec3d> reference;               // per vertex, reference pose (t = 0)
+  std::vector<Vec3d> vertex;                  // per vertex, current pose
+  std::vector<MeshCorners> corners;           // per triangle
+  std::vector<MeshEdges> edges;
+  std::vector<EdgeEnds> edge_ends;            // per edge
+  std::vector<std::uint8_t> owned;
+  std::vector<std::int32_t> mesh;
+  std::int32_t n_edges = 0;
+
+  std::int32_t n_meshes() const { return std::int32_t(names.size()); }
+  std::int32_t n_triangles() const { return std::int32_t(corners.size()); }
+  std::int32_t n_vertices() const { return std::int32_t(vertex.size()); }
+  // Host view (host pointers), without bins unless given.
+  MeshView view() const;
+};
+
+// Appends a validated mesh (see validate_mesh) with its material and motion;
+// numbers its edges and computes feature ownership. Two faces of the mesh
+// touched at once whose normals differ by less than `crease_angle_deg` count
+// as one curved surface (a tessellated cylinder seen from inside), two faces
+// at a larger angle as a corner (rule F of walls/sphere_triangle.hpp).
+// Returns its mesh id.
+constexpr double kDefaultCreaseAngleDeg = 30;
+std::int32_t add_mesh(MeshSet& set, const TriangleMesh& mesh, std::int32_t material = 0,
+                      const MeshMotion& motion = {}, double crease_angle_deg = kDefaultCreaseAngleDeg);
+
+// Moves every mesh to its pose at absolute time `time` (from the reference
+// vertices; nothing accumulates).
+void move_meshes(MeshSet& set, double time);
+
+// Triangles per cell of a CellGrid, CSR: the triangles of cell c are
+// triangles[cell_begin[c] .. cell_begin[c + 1]), ascending, so a kernel visits
+// them in one canonical order.
+struct MeshBins {
+  std::vector<std::int32_t> cell_begin;  // grid.cell_count() + 1
+  std::vector<std::int32_t> triangles;
+};
+
+struct BinningOptions {
+  // A triangle is listed in every cell that its axis-aligned bounding box,
+  // inflated by `reach` on all sides, overlaps. Use reach >= the largest
+  // particle radius (+ a skin if the mesh is rebinned less often than it moves).
+  double reach = 0;
+  // Also drop the cells whose centre is further than reach + the cell's
+  // half-diagonal from the triangle: still conservative for every point inside
+  // the grid, much shorter lists for large slanted triangles (impeller
+  // blades). Points outside the grid, clamped to a border cell by
+  // CellGrid::coord, are only covered without pruning.
+  bool prune_by_distance = true;
+};
+
+// Bins the triangles of `set` in its current pose.
+MeshBins bin_triangles(const MeshSet& set, const CellGrid& grid, const BinningOptions& options);
+
+// Attaches bins to a view (host pointers).
+inline MeshView with_bins(MeshView v, const MeshBins& bins) {
+  v.cell_begin = bins.cell_begin.data();
+  v.cell_triangles = bins.triangles.data();
+  return v;
+}
+
+}  // namespace gs

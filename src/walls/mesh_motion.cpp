@@ -1,0 +1,43 @@
+#include "walls/mesh_motion.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "walls/wall_motion.hpp"
+
+namespace gs {
+
+MeshMotion rotation_at_rpm(const Vec3d& axis_point, const Vec3d& axis_direction, double rpm, const Vec3d& velocity) {
+  const double length = norm(axis_direction);
+  if (!(length > 0) || !std::isfinite(length)) throw std::invalid_argument("rotation axis must be a non-zero vector");
+  if (!std::isfinite(rpm)) throw std::invalid_argument("rpm must be finite");
+  constexpr double kTwoPi = 6.283185307179586476925;
+  MeshMotion m;
+  m.angular_velocity = axis_direction * (rpm * kTwoPi / 60.0 / length);
+  m.axis_point = axis_point;
+  m.velocity = velocity;
+  return m;
+}
+
+MeshPose mesh_pose(const MeshMotion& motion, double time) {
+  // The analytic walls' pose update, reused through a Wall carrying only the motion.
+  Wall w;
+  w.velocity = motion.velocity;
+  w.angular_velocity = motion.angular_velocity;
+  w.axis_point = motion.axis_point;
+  update_wall_pose(w, time);
+  MeshPose p;
+  for (int i = 0; i < 9; ++i) p.rotation[i] = w.rotation[i];
+  p.shift = w.shift;
+  p.axis_point = motion.axis_point;
+  p.velocity = motion.velocity;
+  p.angular_velocity = motion.angular_velocity;
+  return p;
+}
+
+void pose_vertices(const MeshPose& pose, const Vec3d* reference, Vec3d* current, std::size_t begin, std::size_t end) {
+  const PoseVertices f{pose, reference, current, begin};
+  for (std::size_t k = 0; k < end - begin; ++k) f(k);
+}
+
+}  // namespace gs

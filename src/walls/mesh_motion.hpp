@@ -1,0 +1,70 @@
+#pragma once
+// Prescribed rigid motion of a triangle mesh (an impeller turning at a given
+// rpm, a translating plate): the same model as the analytic walls
+// (walls/wall_motion.hpp). The pose at time t is computed from the absolute
+// time and applied to the reference vertices, never accumulated step by step,
+// so the mesh does not drift and a restart reproduces it exactly.
+#include <cstddef>
+
+#include "core/hd.hpp"
+#include "core/vec3.hpp"
+
+namespace gs {
+
+struct MeshMotion {
+  Vec3d velocity;          // translation [m/s]
+  Vec3d angular_velocity;  // [rad/s], along the rotation axis (right-hand rule)
+  Vec3d axis_point;        // a point of the rotation axis in the reference pose [m]
+};
+
+// Rotation about the axis through `axis_point` along `axis_direction` (any
+// non-zero length) at `rpm` revolutions per minute (sign: right-hand rule
+// about the direction), plus an optional translation.
+MeshMotion rotation_at_rpm(const Vec3d& axis_point, const Vec3d& axis_direction, double rpm,
+                           const Vec3d& velocity = {});
+
+// The pose of a mesh at one instant and its rigid-body velocity field:
+// x_world = R (x_ref - axis_point) + axis_point + shift.
+struct MeshPose {
+  double rotation[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // row-major, R[3 i + j] = R_ij
+  Vec3d shift;
+  Vec3d axis_point;  // reference pose
+  Vec3d velocity;
+  Vec3d angular_velocity;
+};
+
+// Pose at absolute time `time` (Rodrigues rotation by |omega| t about omega,
+// shift = velocity t), by the same code as the analytic walls.
+MeshPose mesh_pose(const MeshMotion& motion, double time);
+
+GS_HD GS_INLINE Vec3d pose_rotate(const MeshPose& p, const Vec3d& v) {
+  const double* R = p.rotation;
+  return Vec3d(R[0] * v.x + R[1] * v.y + R[2] * v.z, R[3] * v.x + R[4] * v.y + R[5] * v.z,
+               R[6] * v.x + R[7] * v.y + R[8] * v.z);
+}
+
+// Where the material point at x_ref (reference pose) is now.
+GS_HD GS_INLINE Vec3d pose_point(const MeshPose& p, const Vec3d& x_ref) {
+  return pose_rotate(p, x_ref - p.axis_point) + p.axis_point + p.shift;
+}
+
+// Velocity of the mesh material at the world point x (e.g. a contact point):
+// v + omega x (x - c), c = the rotation centre where it is now.
+GS_HD GS_INLINE Vec3d mesh_point_velocity(const MeshPose& p, const Vec3d& x) {
+  return p.velocity + cross(p.angular_velocity, x - (p.axis_point + p.shift));
+}
+
+// Sets current[k] = pose_point(pose, reference[k]) for k in [begin, end);
+// one functor, run by a host loop here and by Exec::parallel_for on a device.
+struct PoseVertices {
+  MeshPose pose;
+  const Vec3d* reference;
+  Vec3d* current;
+  std::size_t begin;
+  GS_HD void operator()(std::size_t k) const { current[begin + k] = pose_point(pose, reference[begin + k]); }
+};
+
+void pose_vertices(const MeshPose& pose, const Vec3d* reference, Vec3d* current, std::size_t begin,
+                   std::size_t end);
+
+}  // namespace gs

@@ -1,0 +1,302 @@
+#pragma once
+// Sphere against triangle mesh: the closest point of a triangle to a point,
+// and the rule that turns the closest points of many triangles into contacts,
+// each touching region of the mesh counted exactly once. Host and device code;
+// no allocation, no recursion, no std:: containers.
+//
+// THE RULE (docs/MESHES.md has the derivation, the tests and the limits).
+// A contact is a local minimum of the distance from the sphere centre x to
+// the mesh surface, closer than the radius, counted once. Every triangle
+// within reach reports its closest point q, the feature f holding it (face,
+// edge or vertex) and the distance d. A face report is a local minimum. An
+// edge or vertex report is one exactly when every other triangle containing f
+// finds its closest point on f too; otherwise some triangle containing q
+// reaches closer. A report (t, f, q, d) is dropped when another report
+// (u, f', q', d') of a triangle u sharing a vertex with t says so:
+//   S  |q' - q| <= tol and (rank f', u) < (rank f, t)      the same point seen twice (shared edge or
+//                                                         vertex, or rounding): the face, else the
+//                                                         lowest index, reports it;
+//   F  (d', rank f', u) < (d, rank f, t) and the contact   a shallow concave crease of a tessellated
+//      normals differ by less than the crease angle       curved surface: the nearer report stands
+//                                                         for the smooth surface;
+// and, for an edge or vertex report, when u contains f and q' is not q (S
+// did not apply):
+//   B1 f' is a face, or an edge through the vertex f      u reaches closer: q is no minimum;
+//   B2 f' == f and u < t                                  the same feature: the lowest index reports;
+//   B3 f' unrelated to f (neither contains the other)     u reaches closer elsewhere; exact ties
+//      and (d', rank f', u) < (d, rank f, t)              broken by a total order;
+//      (f' an end of the edge f: no objection; B1 drops u's report instead).
+// rank: 0 face, 1 edge, 2 vertex. tol = 1e-6 radius + what coordinate
+// rounding can hide (mesh_coincidence_tolerance). A triangle containing an
+// edge or vertex within reach is itself within reach (its distance is at most
+// d), so the rule needs only the triangles of the sphere's own cell.
+//
+// Properties (tests/walls/test_mesh_contacts.cpp): on a flat tessellated
+// surface exactly one contact with the overlap and normal of the analytic
+// plane, wherever the centre projects (inside a face, on a shared edge, on a
+// shared vertex, within rounding of them); outside a convex body exactly one
+// contact at the true distance; at a concave corner sharper than the crease
+// angle one contact per face. The "owned" bits of walls/mesh.hpp name the
+// reporter of B2 whenever all triangles classify the point alike; the rule
+// does not rely on them, so a rounding disagreement at a feature boundary
+// neither loses nor doubles a contact.
+#include <cmath>
+#include <cstdint>
+
+#include "core/hd.hpp"
+#include "core/vec3.hpp"
+#include "walls/mesh.hpp"
+
+namespace gs {
+
+// Where on a triangle the closest point lies. Edge k joins corners k, (k+1)%3.
+enum TriangleFeature : std::uint8_t {
+  kFace = 0,
+  kEdge0 = 1,
+  kEdge1 = 2,
+  kEdge2 = 3,
+  kVertex0 = 4,
+  kVertex1 = 5,
+  kVertex2 = 6,
+};
+GS_HD GS_INLINE bool is_edge_feature(std::uint8_t f) { return f >= kEdge0 && f <= kEdge2; }
+GS_HD GS_INLINE bool is_vertex_feature(std::uint8_t f) { return f >= kVertex0 && f <= kVertex2; }
+// 0 face, 1 edge, 2 vertex.
+GS_HD GS_INLINE int feature_rank(std::uint8_t f) { return f == kFace ? 0 : (f <= kEdge2 ? 1 : 2); }
+
+struct ClosestPoint {
+  Vec3d point;            // closest point of the triangle to the query point
+  double distance;        // |query - point|
+  std::uint8_t feature;   // TriangleFeature holding `point` in its relative interior
+};
+
+namespace detail {
+// Closest point of the segment from corner k (u) to corner k+1 (w); replaces
+// `best` when strictly closer, so on ties the lower edge index wins.
+GS_HD GS_INLINE void closest_on_edge(const Vec3d& p, const Vec3d& u, const Vec3d& w, int k, ClosestPoint& best) {
+  const Vec3d uw = w - u;
+  const double along = dot(p - u, uw);
+  const double length2 = norm2(uw);
+  ClosestPoint c;
+  if (along <= 0) {
+    c.point = u;
+    c.feature = std::uint8_t(kVertex0 + k);
+  } else if (along >= length2) {
+    c.point = w;
+    c.feature = std::uint8_t(kVertex0 + (k + 1) % 3);
+  } else {
+    c.point = u + uw * (along / length2);
+    c.feature = std::uint8_t(kEdge0 + k);
+  }
+  c.distance = norm(p - c.point);
+  if (k == 0 || c.distance < best.distance) best = c;
+}
+}  // namespace detail
+
+// Closest point of the triangle (a, b, c) to p, by regions: the face when the
+// projection of p falls strictly inside (all three sub-areas of the projection
+// positive); otherwise the nearest point of the three edges, clamped to their
+// ends, which names an edge or a corner. A projection on an edge, to rounding,
+// therefore reports the edge, and both triangles sharing the edge agree.
+GS_HD GS_INLINE ClosestPoint closest_point_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  const Vec3d n = cross(b - a, c - a);  // |n| = twice the area
+  const Vec3d pa = a - p, pb = b - p, pc = c - p;
+  if (dot(n, cross(pa, pb)) > 0 && dot(n, cross(pb, pc)) > 0 && dot(n, cross(pc, pa)) > 0) {
+    const double n2 = norm2(n);
+    const double height = dot(n, p - a) / n2;  // signed, in units of |n|
+    ClosestPoint r;
+    r.point = p - n * height;
+    r.distance = std::fabs(height) * std::sqrt(n2);
+    r.feature = kFace;
+    return r;
+  }
+  ClosestPoint best{Vec3d(), 0.0, kFace};
+  detail::closest_on_edge(p, a, b, 0, best);
+  detail::closest_on_edge(p, b, c, 1, best);
+  detail::closest_on_edge(p, c, a, 2, best);
+  return best;
+}
+
+// One contact of a sphere with a mesh, as the force kernel needs it.
+struct MeshContact {
+  std::int32_t triangle;     // the reporting triangle
+  std::uint8_t feature;      // TriangleFeature of the contact in that triangle
+  std::int32_t mesh;         // mesh id
+  std::uint32_t feature_key; // mesh_feature_key: stable id of the touched face/edge/vertex
+  double overlap;            // radius - distance > 0 [m]
+  Vec3d normal;              // unit, from the surface towards the sphere centre
+  Vec3d point;               // contact point on the surface (world frame)
+  Vec3d wall_velocity;       // velocity of the mesh material at `point` (zero without poses)
+};
+
+// Key of a feature over the whole MeshSet: kind in the top two bits (0 face,
+// 1 edge, 2 vertex), then the triangle, edge or vertex index. The same edge or
+// vertex has the same key whichever triangle reports it.
+GS_HD GS_INLINE std::uint32_t mesh_feature_key(const MeshView& m, std::int32_t t, std::uint8_t f) {
+  if (f == kFace) return std::uint32_t(t);
+  if (is_edge_feature(f)) return (1u << 30) | std::uint32_t(m.edges[t].e[f - kEdge0]);
+  return (2u << 30) | std::uint32_t(m.corners[t].v[f - kVertex0]);
+}
+
+// The vertices of the feature named by a mesh_feature_key (3 for a face, 2
+// for an edge, 1 for a vertex); returns how many.
+GS_HD GS_INLINE int mesh_feature_vertices(const MeshView& m, std::uint32_t key, std::int32_t v[3]) {
+  const std::uint32_t kind = key >> 30;
+  const std::int32_t index = std::int32_t(key & 0x3FFFFFFFu);
+  if (kind == 0) {
+    for (int k = 0; k < 3; ++k) v[k] = m.corners[index].v[k];
+    return 3;
+  }
+  if (kind == 1) {
+    v[0] = m.edge_ends[index].v[0];
+    v[1] = m.edge_ends[index].v[1];
+    return 2;
+  }
+  v[0] = index;
+  return 1;
+}
+
+// Whether two features share a vertex: a contact that moves from one to the
+// other (rolling over a tessellated floor) is the same contact, so friction
+// history can follow it (docs/MESHES.md, Integration).
+GS_HD GS_INLINE bool mesh_features_adjacent(const MeshView& m, std::uint32_t a, std::uint32_t b) {
+  std::int32_t va[3], vb[3];
+  const int na = mesh_feature_vertices(m, a, va), nb = mesh_feature_vertices(m, b, vb);
+  for (int i = 0; i < na; ++i)
+    for (int j = 0; j < nb; ++j)
+      if (va[i] == vb[j]) return true;
+  return false;
+}
+
+GS_HD GS_INLINE ClosestPoint triangle_closest_point(const MeshView& m, std::int32_t t, const Vec3d& x) {
+  const MeshCorners& c = m.corners[t];
+  return closest_point_on_triangle(x, m.vertex[c.v[0]], m.vertex[c.v[1]], m.vertex[c.v[2]]);
+}
+
+// Unit normal of triangle t turned towards x (outwards when x lies on its plane).
+GS_HD GS_INLINE Vec3d face_normal_towards(const MeshView& m, std::int32_t t, const Vec3d& x) {
+  const MeshCorners& c = m.corners[t];
+  const Vec3d& a = m.vertex[c.v[0]];
+  const Vec3d n = cross(m.vertex[c.v[1]] - a, m.vertex[c.v[2]] - a);
+  return n * ((dot(n, x - a) < 0 ? -1.0 : 1.0) / norm(n));
+}
+
+// Contact normal of the report r of triangle t: the face normal for a face,
+// else the direction from the closest point to x (r.distance > 0).
+GS_HD GS_INLINE Vec3d contact_normal(const MeshView& m, std::int32_t t, const ClosestPoint& r, const Vec3d& x) {
+  if (r.feature == kFace) return face_normal_towards(m, t, x);
+  return (x - r.point) * (1.0 / r.distance);
+}
+
+// Distance below which two reported points are one (rule S): 1e-6 radius,
+// plus what rounding of coordinates of size |x| can hide: distances carry
+// errors of about 1e-15 |x|, and a report whose distance is wrong by e can sit
+// up to sqrt(2 radius e) along the surface from the true closest point.
+GS_HD GS_INLINE double mesh_coincidence_tolerance(const Vec3d& x, double radius) {
+  const double scale = std::fmax(std::fabs(x.x), std::fmax(std::fabs(x.y), std::fabs(x.z)));
+  return 1e-6 * radius + 2e-7 * std::sqrt(radius * scale);
+}
+
+namespace detail {
+// (d', rank', t') < (d, rank, t): a strict total order on reports.
+GS_HD GS_INLINE bool report_precedes(const ClosestPoint& a, std::int32_t ta, const ClosestPoint& b, std::int32_t tb) {
+  if (a.distance != b.distance) return a.distance < b.distance;
+  const int ra = feature_rank(a.feature), rb = feature_rank(b.feature);
+  if (ra != rb) return ra < rb;
+  return ta < tb;
+}
+
+// The rule (top of this file) for the report r of triangle t: false when
+// another report within reach makes it redundant.
+GS_HD GS_INLINE bool keep_mesh_report(const MeshView& m, const std::int32_t* list, std::int32_t count, const Vec3d& x,
+                                      double radius, double tol2, std::int32_t t, const ClosestPoint& r) {
+  const bool on_face = r.feature == kFace;
+  const bool on_edge = is_edge_feature(r.feature);
+  const MeshCorners& tc = m.corners[t];
+  // The feature: its edge id (or -1) and its one or two vertices (unused for a face).
+  const int k0 = on_edge ? r.feature - kEdge0 : (on_face ? 0 : r.feature - kVertex0);
+  const std::int32_t v0 = tc.v[k0];
+  const std::int32_t v1 = on_edge ? tc.v[(k0 + 1) % 3] : v0;
+  const std::int32_t edge = on_edge ? m.edges[t].e[k0] : -1;
+  const int rank = feature_rank(r.feature);
+  for (std::int32_t k = 0; k < count; ++k) {
+    const std::int32_t u = list[k];
+    if (u == t || !m.shares_vertex(u, t)) continue;
+    const ClosestPoint o = triangle_closest_point(m, u, x);
+    if (!(o.distance < radius)) continue;
+    const int other_rank = feature_rank(o.feature);
+    // S: the same point, found again by a neighbour; the face, else the lowest index, reports it.
+    if (norm2(o.point - r.point) <= tol2) {
+      if (other_rank < rank || (other_rank == rank && u < t)) return false;
+      continue;
+    }
+    // F: a nearer report of a neighbour whose contact normal is within the
+    // crease angle (the sphere sits in a shallow concave crease of a
+    // tessellated curved surface): one smooth surface, the nearer one reports.
+    if (m.crease_cos && m.mesh && o.distance > 0 && report_precedes(o, u, r, t) &&
+        dot(contact_normal(m, t, r, x), contact_normal(m, u, o, x)) > m.crease_cos[m.mesh[t]])
+      return false;
+    if (on_face || !(on_edge ? m.has_edge(u, edge) : m.has_vertex(u, v0))) continue;
+    // u contains the edge or vertex of r, and its closest point is elsewhere.
+    if (o.feature == kFace) return false;  // B1
+    const MeshCorners& uc = m.corners[u];
+    if (is_edge_feature(o.feature)) {
+      const int j = o.feature - kEdge0;
+      if (on_edge && m.edges[u].e[j] == edge) {  // B2
+        if (u < t) return false;
+        continue;
+      }
+      if (!on_edge && (uc.v[j] == v0 || uc.v[(j + 1) % 3] == v0)) return false;  // B1: an edge through the vertex
+    } else {
+      const std::int32_t w = uc.v[o.feature - kVertex0];
+      if (!on_edge && w == v0) {  // B2
+        if (u < t) return false;
+        continue;
+      }
+      if (on_edge && (w == v0 || w == v1)) continue;  // an end of the edge: no objection
+    }
+    if (report_precedes(o, u, r, t)) return false;  // B3
+  }
+  return true;
+}
+}  // namespace detail
+
+// Calls visit(const MeshContact&) for each contact of the sphere (x, radius)
+// with the triangles list[0..count), which must hold, ascending, every
+// triangle within `radius` of x (a cell's list from bin_triangles does).
+// Contacts come in ascending triangle order.
+template <class Visitor>
+GS_HD void for_each_mesh_contact_in(const MeshView& m, const std::int32_t* list, std::int32_t count, const Vec3d& x,
+                                    double radius, Visitor& visit) {
+  const double tol = mesh_coincidence_tolerance(x, radius);
+  const double tol2 = tol * tol;
+  for (std::int32_t k = 0; k < count; ++k) {
+    const std::int32_t t = list[k];
+    const ClosestPoint r = triangle_closest_point(m, t, x);
+    if (!(r.distance < radius)) continue;
+    if (r.feature != kFace && !(r.distance > 0)) continue;  // centre on an edge or corner: no normal
+    if (!detail::keep_mesh_report(m, list, count, x, radius, tol2, t, r)) continue;
+    MeshContact c;
+    c.normal = contact_normal(m, t, r, x);
+    c.triangle = t;
+    c.feature = r.feature;
+    c.mesh = m.mesh ? m.mesh[t] : 0;
+    c.feature_key = mesh_feature_key(m, t, r.feature);
+    c.overlap = radius - r.distance;
+    c.point = r.point;
+    c.wall_velocity = m.pose ? mesh_point_velocity(m.pose[c.mesh], r.point) : Vec3d();
+    visit(c);
+  }
+}
+
+// The same over the binned cell of x (MeshView::cell_begin/cell_triangles
+// built by bin_triangles on `grid` with reach >= radius).
+template <class Visitor>
+GS_HD void for_each_mesh_contact(const MeshView& m, const CellGrid& grid, const Vec3d& x, double radius,
+                                 Visitor& visit) {
+  std::int32_t begin, end;
+  m.cell_range(grid, x, begin, end);
+  for_each_mesh_contact_in(m, m.cell_triangles + begin, end - begin, x, radius, visit);
+}
+
+}  // namespace gs

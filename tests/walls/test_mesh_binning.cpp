@@ -1,0 +1,200 @@
+// The device layout of meshes (edge numbering, feature ownership) and the
+// binning of triangles into the cells of a CellGrid (CSR, ascending lists),
+// checked against brute force.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <random>
+#include <set>
+
+#include "mesh_test_helpers.hpp"
+#include "walls/impeller.hpp"
+
+namespace gs {
+namespace {
+
+MeshSet two_mesh_set() {
+  MeshSet set;
+  add_mesh(set, make_impeller(), 0, rotation_at_rpm(Vec3d(), Vec3d(0, 0, 1), 30));
+  const test::FlatSquare floor =
+      test::make_flat_square(6, 0.02, 0.2, test::Rotation(Vec3d(0, 0, 1), 0.3), Vec3d(-0.06, -0.06, -0.004), 9);
+  add_mesh(set, floor.mesh, 1);
+  return set;
+}
+
+TEST(MeshLayout, EdgesAndOwnership) {
+  const MeshSet set = two_mesh_set();
+  ASSERT_EQ(set.n_meshes(), 2);
+  EXPECT_EQ(set.triangle_begin.back(), set.n_triangles());
+  EXPECT_EQ(set.vertex_begin.back(), set.n_vertices());
+  // Edge ids: one per distinct vertex pair, shared by the triangles using it.
+  std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> id_of;
+  std::vector<int> edge_owners(std::size_t(set.n_edges), 0), vertex_owners(std::size_t(set.n_vertices()), 0);
+  std::vector<std::int32_t> first_user(std::size_t(set.n_vertices()), -1);
+  for (std::int32_t t = 0; t < set.n_triangles(); ++t) {
+    EXPECT_EQ(set.mesh[t], t < set.triangle_begin[1] ? 0 : 1);
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t a = set.corners[t].v[k], b = set.corners[t].v[(k + 1) % 3];
+      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      const auto [it, added] = id_of.emplace(key, set.edges[t].e[k]);
+      EXPECT_EQ(it->second, set.edges[t].e[k]);
+      if (added) {
+        EXPECT_TRUE(set.owned[t] & (kOwnsEdge0 << k)) << "first user owns the edge";
+      }
+      edge_owners[set.edges[t].e[k]] += (set.owned[t] >> k) & 1;
+      vertex_owners[a] += (set.owned[t] >> (3 + k)) & 1;
+      if (first_user[a] < 0) first_user[a] = t;
+      EXPECT_EQ(bool(set.owned[t] & (kOwnsVertex0 << k)), first_user[a] == t);
+    }
+  }
+  EXPECT_EQ(std::int32_t(id_of.size()), set.n_edges);
+  ASSERT_EQ(std::int32_t(set.edge_ends.size()), set.n_edges);
+  for (const auto& [ends, id] : id_of) {
+    EXPECT_EQ(set.edge_ends[id].v[0], ends.first);
+    EXPECT_EQ(set.edge_ends[id].v[1], ends.second);
+  }
+  for (int n : edge_owners) EXPECT_EQ(n, 1);
+  for (int n : vertex_owners) EXPECT_EQ(n, 1);
+  // The impeller's edges are numbered first, as many as its topology has.
+  std::set<std::int32_t> impeller_edges;
+  for (std::int32_t t = 0; t < set.triangle_begin[1]; ++t)
+    for (int k = 0; k < 3; ++k) impeller_edges.insert(set.edges[t].e[k]);
+  EXPECT_EQ(impeller_edges.size(), mesh_topology(make_impeller()).edges);
+  EXPECT_EQ(*impeller_edges.rbegin() + 1, std::int32_t(impeller_edges.size()));
+}
+
+bool inside_grid(const CellGrid& g, const Vec3d& x) {
+  const double f[3] = {(x.x - g.origin.x) / g.cell_size, (x.y - g.origin.y) / g.cell_size,
+                       (x.z - g.origin.z) / g.cell_size};
+  for (int a = 0; a < 3; ++a)
+    if (!(f[a] >= 0 && f[a] < g.dims[a])) return false;
+  return true;
+}
+
+// Brute force: cells overlapped by each triangle's inflated bounding box.
+std::vector<std::vector<std::int32_t>> brute_force_bins(const MeshSet& set, const CellGrid& grid, double reach) {
+  std::vector<std::vector<std::int32_t>> cells(std::size_t(grid.cell_count()));
+  for (std::int32_t t = 0; t < set.n_triangles(); ++t) {
+    Vec3d lo(1e300, 1e300, 1e300), hi(-1e300, -1e300, -1e300);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3d x = set.vertex[set.corners[t].v[k]];
+      lo = Vec3d(std::min(lo.x, x.x), std::min(lo.y, x.y), std::min(lo.z, x.z));
+      hi = Vec3d(std::max(hi.x, x.x), std::max(hi.y, x.y), std::max(hi.z, x.z));
+    }
+    for (int z = 0; z < grid.dims[2]; ++z)
+      for (int y = 0; y < grid.dims[1]; ++y)
+        for (int x = 0; x < grid.dims[0]; ++x) {
+          const Vec3d c0 = grid.origin + Vec3d(x, y, z) * grid.cell_size, c1 = c0 + Vec3d(1, 1, 1) * grid.cell_size;
+          // Cells are half open [c0, c1); the last cell of an axis also takes what lies beyond it.
+          auto overlaps = [&](double l, double h, double a0, double a1, int i, int n) {
+            return (i == n - 1 || l - reach < a1) && (i == 0 || h + reach >= a0);
+          };
+          if (overlaps(lo.x, hi.x, c0.x, c1.x, x, grid.dims[0]) && overlaps(lo.y, hi.y, c0.y, c1.y, y, grid.dims[1]) &&
+              overlaps(lo.z, hi.z, c0.z, c1.z, z, grid.dims[2]))
+            cells[std::size_t(grid.linear({x, y, z}))].push_back(t);
+        }
+  }
+  return cells;
+}
+
+TEST(MeshBinning, BoundingBoxBinsMatchBruteForce) {
+  const MeshSet set = two_mesh_set();
+  const CellGrid grid = make_cell_grid(Vec3d(-0.055, -0.05, -0.01), Vec3d(0.05, 0.052, 0.11), 0.0071);
+  BinningOptions o;
+  o.reach = 0.0015;
+  o.prune_by_distance = false;
+  const MeshBins bins = bin_triangles(set, grid, o);
+  const auto brute = brute_force_bins(set, grid, o.reach);
+  ASSERT_EQ(bins.cell_begin.size(), std::size_t(grid.cell_count()) + 1);
+  EXPECT_EQ(bins.cell_begin.front(), 0);
+  EXPECT_EQ(std::size_t(bins.cell_begin.back()), bins.triangles.size());
+  for (std::int64_t c = 0; c < grid.cell_count(); ++c) {
+    const std::vector<std::int32_t> list(bins.triangles.begin() + bins.cell_begin[c],
+                                         bins.triangles.begin() + bins.cell_begin[c + 1]);
+    EXPECT_TRUE(std::is_sorted(list.begin(), list.end()));
+    EXPECT_TRUE(std::adjacent_find(list.begin(), list.end()) == list.end());
+    EXPECT_EQ(list, brute[std::size_t(c)]) << "cell " << c;
+  }
+}
+
+TEST(MeshBinning, EveryTriangleInReachIsListedAndPruningOnlyDrops) {
+  const MeshSet set = two_mesh_set();
+  const double reach = 0.0011;
+  const CellGrid grid = make_cell_grid(Vec3d(-0.06, -0.06, -0.01), Vec3d(0.06, 0.06, 0.105), 2 * reach);
+  BinningOptions full{reach, false}, pruned{reach, true};
+  const MeshBins a = bin_triangles(set, grid, full), b = bin_triangles(set, grid, pruned);
+  // The blades (the impeller's last 4 x 12 triangles) are large and slanted:
+  // most cells of their bounding boxes are far from them.
+  const std::int32_t blades_begin = set.triangle_begin[1] - 48, blades_end = set.triangle_begin[1];
+  auto blade_entries = [&](const MeshBins& bins) {
+    return std::count_if(bins.triangles.begin(), bins.triangles.end(),
+                         [&](std::int32_t t) { return t >= blades_begin && t < blades_end; });
+  };
+  EXPECT_LT(3 * blade_entries(b), blade_entries(a));
+  EXPECT_LT(b.triangles.size(), a.triangles.size());
+  for (std::int64_t c = 0; c < grid.cell_count(); ++c)
+    EXPECT_TRUE(std::includes(a.triangles.begin() + a.cell_begin[c], a.triangles.begin() + a.cell_begin[c + 1],
+                              b.triangles.begin() + b.cell_begin[c], b.triangles.begin() + b.cell_begin[c + 1]));
+  // Random points near the surfaces: every triangle within reach is in the list.
+  std::mt19937_64 rng(3);
+  std::uniform_int_distribution<std::int32_t> pick(0, set.n_triangles() - 1);
+  std::normal_distribution<double> jitter(0, reach);
+  int checked = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const MeshCorners& t = set.corners[pick(rng)];
+    const Vec3d x = (set.vertex[t.v[0]] + set.vertex[t.v[1]] + set.vertex[t.v[2]]) * (1.0 / 3) +
+                    Vec3d(jitter(rng), jitter(rng), jitter(rng)) + (set.vertex[t.v[0]] - set.vertex[t.v[1]]) * 0.3;
+    if (!inside_grid(grid, x)) continue;
+    const std::int64_t cell = grid.linear(grid.coord(x));
+    const std::set<std::int32_t> listed(b.triangles.begin() + b.cell_begin[cell],
+                                        b.triangles.begin() + b.cell_begin[cell + 1]);
+    for (std::int32_t u = 0; u < set.n_triangles(); ++u) {
+      const ClosestPoint cp = triangle_closest_point(set.view(), u, x);
+      if (cp.distance <= reach) {
+        ++checked;
+        EXPECT_TRUE(listed.count(u)) << "triangle " << u << " at " << cp.distance << " not in cell " << cell;
+      }
+    }
+  }
+  EXPECT_GT(checked, 2000);
+}
+
+TEST(MeshBinning, BinnedContactsEqualContactsOverAllTriangles) {
+  const MeshSet set = two_mesh_set();
+  const double radius = 0.0009;
+  const CellGrid grid = make_cell_grid(Vec3d(-0.06, -0.06, -0.01), Vec3d(0.06, 0.06, 0.105), 2 * radius);
+  const MeshBins bins = bin_triangles(set, grid, BinningOptions{radius, true});
+  const MeshView view = with_bins(set.view(), bins);
+  std::mt19937_64 rng(8);
+  std::uniform_int_distribution<std::int32_t> pick(0, set.n_triangles() - 1);
+  std::normal_distribution<double> jitter(0, radius);
+  int touching = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const MeshCorners& t = set.corners[pick(rng)];
+    const Vec3d x = set.vertex[t.v[i % 3]] + Vec3d(jitter(rng), jitter(rng), jitter(rng));
+    if (!inside_grid(grid, x)) continue;
+    std::vector<MeshContact> binned;
+    auto collect = [&](const MeshContact& c) { binned.push_back(c); };
+    for_each_mesh_contact(view, grid, x, radius, collect);
+    const std::vector<MeshContact> all = test::all_contacts(set, x, radius);
+    ASSERT_EQ(binned.size(), all.size());
+    touching += !all.empty();
+    for (std::size_t k = 0; k < all.size(); ++k) {
+      EXPECT_EQ(binned[k].triangle, all[k].triangle);
+      EXPECT_EQ(binned[k].feature_key, all[k].feature_key);
+      EXPECT_EQ(binned[k].overlap, all[k].overlap);
+      EXPECT_EQ(binned[k].mesh, set.mesh[all[k].triangle]);
+    }
+  }
+  EXPECT_GT(touching, 1500);
+}
+
+TEST(MeshBinning, RejectsNegativeReach) {
+  const MeshSet set = two_mesh_set();
+  const CellGrid grid = make_cell_grid(Vec3d(-0.06, -0.06, -0.01), Vec3d(0.06, 0.06, 0.105), 0.01);
+  EXPECT_THROW(bin_triangles(set, grid, BinningOptions{-1, true}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace gs
