@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Compares the last CSV snapshot of runs: largest position and velocity
+"""Compares the last snapshot (HDF5 or CSV) of runs: largest position and velocity
 difference against the first run, relative to the particle radius and to the
 largest speed. Usage: compare_snapshots.py RUN_DIR RUN_DIR [RUN_DIR...]"""
 import csv
@@ -9,7 +9,18 @@ import os
 import sys
 
 
+def last_h5(path):
+    import h5py  # only needed for HDF5 snapshots
+    with h5py.File(path, "r") as f:
+        p = f["particles"]
+        ids, r, x, v = p["id"][:], p["radius"][:], p["position"][:], p["velocity"][:]
+    return {int(i): (float(r[k]), list(x[k]), list(v[k])) for k, i in enumerate(ids)}
+
+
 def last_snapshot(directory):
+    h5 = sorted(glob.glob(os.path.join(directory, "particles_*.h5")))
+    if h5:
+        return h5[-1], last_h5(h5[-1])
     files = sorted(glob.glob(os.path.join(directory, "particles_*.csv")))
     if not files:
         sys.exit(f"no snapshots in {directory}")

@@ -39,7 +39,7 @@ if [[ $what == all || $what == tests ]]; then
     $g run $demo --backend cpu --out /tmp/demo_cpu 2>&1 | tail -3
     $g run $demo --backend cuda --out /tmp/demo_gpu 2>&1 | tail -3
     mpirun --allow-run-as-root --oversubscribe -np 2 $g run $demo --backend cuda --out /tmp/demo_gpu2 2>&1 | tail -3
-    python3 bench/compare_snapshots.py /tmp/demo_cpu /tmp/demo_gpu /tmp/demo_gpu2
+    python3 bench/compare_snapshots.py /tmp/demo_gpu /tmp/demo_gpu2 /tmp/demo_cpu
   } >> "$log" 2>&1
 fi
 

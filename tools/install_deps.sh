@@ -4,7 +4,7 @@
 # CUDA backend is built when nvcc is found (PATH or /usr/local/cuda/bin).
 set -euo pipefail
 packages=(build-essential cmake git libyaml-cpp-dev libgtest-dev googletest libopenmpi-dev openmpi-bin
-          libhdf5-dev hdf5-tools libmetis-dev python3 python3-numpy)
+          libhdf5-dev hdf5-tools libmetis-dev python3 python3-numpy python3-paraview)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

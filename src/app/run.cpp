@@ -125,18 +125,31 @@ int command_run(const std::vector<std::string>& args, Transport& transport) {
   const long long checkpoint_every = steps_per(scene.output.checkpoint_interval, scene.time_step);
   const double checkpoint_seconds = 60.0 * scene.output.checkpoint_minutes;
   const bool checkpointing = checkpoint_every > 0 || checkpoint_seconds > 0;
+  // Mixing analysis at start, start + every, ... (steps counted from step 0).
+  const long long mixing_every = scene.mixing ? steps_per(scene.mixing->every, scene.time_step) : 0;
+  const long long mixing_first = scene.mixing ? std::llround(scene.mixing->start / scene.time_step) : 0;
+  auto mixing_due = [&](long long step) {
+    return mixing_every > 0 && step >= mixing_first && (step - mixing_first) % mixing_every == 0;
+  };
   const auto t0 = Clock::now();
   auto last_checkpoint = t0;
   Progress progress(sim->step_count(), total, particles);
   if (a.restart.empty()) out.snapshot(*sim);
+  if (a.restart.empty() && mixing_due(0)) out.mixing(*sim);
   while (sim->step_count() < total) {
     const long long step = sim->step_count();
     long long chunk = std::min({every > 0 ? every - step % every : total, total - step, 200LL});
     if (checkpoint_every > 0) chunk = std::min(chunk, checkpoint_every - step % checkpoint_every);
+    if (mixing_every > 0) {
+      const long long next = step < mixing_first ? mixing_first
+                                                 : mixing_first + ((step - mixing_first) / mixing_every + 1) * mixing_every;
+      chunk = std::min(chunk, next - step);
+    }
     sim->run(chunk);
     progress.update(*sim);
     const long long now = sim->step_count();
     if ((every > 0 && now % every == 0) || now == total) out.snapshot(*sim);
+    if (mixing_due(now)) out.mixing(*sim);
     const bool wall_due = checkpoint_seconds > 0 &&
                           std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >= checkpoint_seconds;
     // Every rank must agree before a collective checkpoint or a stop.

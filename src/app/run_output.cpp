@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "analysis/mixing.hpp"
 #include "comm/snapshot_gather.hpp"
 #include "io/h5_snapshot.hpp"
 #include "io/particle_csv.hpp"
@@ -39,6 +40,11 @@ RunOutput::RunOutput(const SceneSpec& scene, const std::string& directory, Trans
   std::filesystem::create_directories(directory_);
   log_ = open_for_append(directory_ + "/run.log");
   timeseries_ = open_for_append(directory_ + "/timeseries.csv");
+  if (scene.mixing) {
+    const std::filesystem::path log_path(scene.mixing->output);
+    mixing_log_ = std::make_unique<MixingLog>(
+        *scene.mixing, log_path.is_absolute() ? log_path.string() : directory_ + "/" + log_path.string());
+  }
   if (std::ftell(timeseries_) == 0)
     std::fprintf(timeseries_, "step,time,particles,kinetic_energy_translational,kinetic_energy_rotational,"
                               "max_speed,contacts\n");
@@ -91,6 +97,12 @@ void RunOutput::snapshot(const Simulation& sim) {
   std::fprintf(timeseries_, "%lld,%.17g,%zu,%.17g,%.17g,%.17g,%lld\n", s.step, s.time, s.size(), translational,
                rotational, max_speed, need_history ? n_contacts : -1LL);
   std::fflush(timeseries_);
+}
+
+void RunOutput::mixing(const Simulation& sim) {
+  const ParticleSnapshot s = gather_snapshot(transport_, sim.snapshot());
+  if (transport_.rank() != 0 || !mixing_log_) return;
+  mixing_log_->append(evaluate_mixing(*scene_.mixing, s));
 }
 
 void RunOutput::checkpoint(const Simulation& sim) {

@@ -6,6 +6,9 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
+#include "analysis/mixing_log.hpp"
 #include "comm/transport.hpp"
 #include "engine/simulation.hpp"
 #include "io/snapshot_fields.hpp"
@@ -22,6 +25,7 @@ class RunOutput {
 
   void snapshot(const Simulation& sim);    // and a time-series row
   void checkpoint(const Simulation& sim);  // keeps the newest two
+  void mixing(const Simulation& sim);      // one row of the mixing analysis (scene.mixing)
   // printf to stdout and the log file, rank 0 only.
   void log(const char* format, ...) __attribute__((format(printf, 2, 3)));
 
@@ -35,6 +39,7 @@ class RunOutput {
   std::vector<std::string> checkpoints_;
   std::FILE* log_ = nullptr;
   std::FILE* timeseries_ = nullptr;
+  std::unique_ptr<MixingLog> mixing_log_;
 };
 
 }  // namespace gs

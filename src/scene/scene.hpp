@@ -1,9 +1,11 @@
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "analysis/mixing_spec.hpp"
 #include "core/types.hpp"
 #include "core/vec3.hpp"
 #include "walls/wall.hpp"
@@ -79,6 +81,7 @@ struct SceneSpec {
   OutputSpec output;
   int contact_slots = 12;            // history slots per particle
   DecompositionSpec decomposition;
+  std::optional<MixingSpec> mixing;  // analysis.mixing (docs/MIXING.md); none: no mixing analysis
 };
 
 }  // namespace gs

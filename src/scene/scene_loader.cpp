@@ -18,7 +18,8 @@ namespace {
 
 const std::vector<std::string> kTopKeys = {"domain",    "gravity", "contact_model", "precision",     "effects",
                                            "materials", "pairs",   "particles",     "walls",         "time_step",
-                                           "duration",  "output",  "contact_slots", "decomposition"};
+                                           "duration",  "output",  "contact_slots", "decomposition",
+                                           "analysis"};
 
 void parse_decomposition(const Map& m, SceneSpec& s) {
   DecompositionSpec& d = s.decomposition;
@@ -192,6 +193,7 @@ SceneSpec parse_scene(const std::string& yaml_text, const std::string& source) {
   parse_particles(top, s);
   parse_pairs(top, s);
   resolve_time_step(top, s);
+  parse_analysis(top, s);
   return s;
 }
 

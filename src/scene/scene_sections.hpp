@@ -14,4 +14,7 @@ void parse_walls(const Map& top, SceneSpec& s);
 // and each other (needs s.materials, s.walls and the domain).
 void parse_particles(const Map& top, SceneSpec& s);
 
+// `analysis:` -> s.mixing (needs the domain and the duration); scene_analysis.cpp.
+void parse_analysis(const Map& top, SceneSpec& s);
+
 }  // namespace gs::scene_yaml

@@ -16,6 +16,9 @@ struct CpuExec {
   // Each thread calls its own copy of the functor: the compiler then knows
   // that no store through the functor's output pointers changes its fields,
   // so they stay in registers instead of being reloaded around every store.
+  // Each thread calls its own copy of the functor: the compiler then knows
+  // that no store through the functor's output pointers changes its fields,
+  // so they stay in registers instead of being reloaded around every store.
   template <class F>
   static void parallel_for(Index n, const F& f) {
 #pragma omp parallel
