@@ -99,7 +99,8 @@ class StepKernelsImpl final : public StepKernels {
 
   std::size_t bytes() const override {
     return forces_.force.bytes() + forces_.torque.bytes() + history_.partner.bytes() + history_.tangential.bytes() +
-           history_.rolling.bytes() + cells_.bytes() + pairs_.bytes() + walls_.bytes();
+           history_.rolling.bytes() + cells_.bytes() + pairs_.bytes() + walls_.bytes() + staging_.bytes() +
+           staging_index_.bytes();
   }
 
  private:
@@ -135,6 +136,9 @@ class StepKernelsImpl final : public StepKernels {
   CellList cells_;
   ForceArrays<Real> forces_;
   ContactHistory<Real> history_;
+  // Reused staging for data movement (reorder, migration, ghosts).
+  mutable DeviceArray<unsigned char> staging_{Exec::backend};
+  mutable DeviceArray<Index> staging_index_{Exec::backend};
 };
 
 }  // namespace gs

@@ -50,7 +50,7 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::reorder_by_cells(ParticleStore
   if (s.n_ghost != 0) throw std::logic_error("reorder_by_cells needs a cell list of owned particles only");
   const Index n = s.n_owned;
   const Index* order = cells_.sorted.data();
-  DeviceArray<unsigned char> tmp(Exec::backend);
+  DeviceArray<unsigned char>& tmp = staging_;
   gather_in_place<Exec>(s.id, order, n, tmp);
   gather_in_place<Exec>(s.material, order, n, tmp);
   gather_in_place<Exec>(s.marker, order, n, tmp);

@@ -35,30 +35,44 @@ struct ScatterHistory {
   }
 };
 
+// Staging buffers are the kernels' own (`scratch`), reused from call to call:
+// allocating device memory every step would cost more than the copies.
+template <class T>
+T* staging(DeviceArray<unsigned char>& scratch, std::size_t n) {
+  scratch.resize(n * sizeof(T));
+  return reinterpret_cast<T*>(scratch.data());
+}
+
 template <class Exec, class T>
-std::vector<T> gathered_to_host(const DeviceArray<T>& a, const DeviceArray<Index>& which) {
+std::vector<T> gathered_to_host(const DeviceArray<T>& a, const DeviceArray<Index>& which,
+                                DeviceArray<unsigned char>& scratch) {
   const Index m = Index(which.size());
-  DeviceArray<T> packed(Exec::backend, std::size_t(m));
-  Exec::parallel_for(m, Gather<T>{a.data(), packed.data(), which.data()});
-  return packed.to_host();
+  T* packed = staging<T>(scratch, std::size_t(m));
+  Exec::parallel_for(m, Gather<T>{a.data(), packed, which.data()});
+  std::vector<T> h(static_cast<std::size_t>(m));
+  if (m > 0) backend_copy_to_host(Exec::backend, h.data(), packed, h.size() * sizeof(T));
+  return h;
 }
 
 template <class Exec, class T>
 std::vector<T> gathered_history_to_host(const DeviceArray<T>& a, const DeviceArray<Index>& which, int slots,
-                                        const HistoryStrides& strides) {
+                                        const HistoryStrides& strides, DeviceArray<unsigned char>& scratch) {
   const Index m = Index(which.size());
-  DeviceArray<T> packed(Exec::backend, std::size_t(slots) * std::size_t(m));
-  Exec::parallel_for(Index(slots) * m, GatherHistory<T>{a.data(), packed.data(), which.data(), strides, m});
-  return packed.to_host();
+  const std::size_t n = std::size_t(slots) * std::size_t(m);
+  T* packed = staging<T>(scratch, n);
+  Exec::parallel_for(Index(slots) * m, GatherHistory<T>{a.data(), packed, which.data(), strides, m});
+  std::vector<T> h(n);
+  if (n > 0) backend_copy_to_host(Exec::backend, h.data(), packed, n * sizeof(T));
+  return h;
 }
 
 template <class Exec, class T>
 void scatter_history_from_host(DeviceArray<T>& a, const std::vector<T>& block, int slots, const HistoryStrides& strides,
-                               Index first) {
+                               Index first, DeviceArray<unsigned char>& scratch) {
   const Index m = Index(block.size() / std::size_t(slots));
-  DeviceArray<T> packed(Exec::backend);
-  packed.from_host(block);
-  Exec::parallel_for(Index(slots) * m, ScatterHistory<T>{packed.data(), a.data(), strides, first, m});
+  T* packed = staging<T>(scratch, block.size());
+  if (!block.empty()) backend_copy_from_host(Exec::backend, packed, block.data(), block.size() * sizeof(T));
+  Exec::parallel_for(Index(slots) * m, ScatterHistory<T>{packed, a.data(), strides, first, m});
 }
 
 template <class T>
@@ -72,30 +86,30 @@ ParticleRecords StepKernelsImpl<Exec, Real, Model, Effects>::export_particles(co
                                                                               const std::vector<Index>& which,
                                                                               bool with_history) const {
   ParticleRecords r;
-  DeviceArray<Index> w(Exec::backend);
+  DeviceArray<Index>& w = staging_index_;
   w.from_host(which);
-  r.id = gathered_to_host<Exec>(s.id, w);
-  r.material = gathered_to_host<Exec>(s.material, w);
-  r.marker = gathered_to_host<Exec>(s.marker, w);
-  r.radius = gathered_to_host<Exec>(s.radius, w);
-  r.mass = gathered_to_host<Exec>(s.mass, w);
-  r.inertia = gathered_to_host<Exec>(s.inertia, w);
-  r.position = gathered_to_host<Exec>(s.position, w);
-  r.velocity = gathered_to_host<Exec>(s.velocity, w);
-  r.angular_velocity = gathered_to_host<Exec>(s.angular_velocity, w);
-  r.orientation = gathered_to_host<Exec>(s.orientation, w);
+  r.id = gathered_to_host<Exec>(s.id, w, staging_);
+  r.material = gathered_to_host<Exec>(s.material, w, staging_);
+  r.marker = gathered_to_host<Exec>(s.marker, w, staging_);
+  r.radius = gathered_to_host<Exec>(s.radius, w, staging_);
+  r.mass = gathered_to_host<Exec>(s.mass, w, staging_);
+  r.inertia = gathered_to_host<Exec>(s.inertia, w, staging_);
+  r.position = gathered_to_host<Exec>(s.position, w, staging_);
+  r.velocity = gathered_to_host<Exec>(s.velocity, w, staging_);
+  r.angular_velocity = gathered_to_host<Exec>(s.angular_velocity, w, staging_);
+  r.orientation = gathered_to_host<Exec>(s.orientation, w, staging_);
   if (!with_history || !kHistory) return r;
 
   const std::size_t m = which.size(), slots = std::size_t(history_.slots);
   HostHistory& h = r.history;
   h.slots = history_.slots;
   const std::vector<ParticleId> partner =
-      gathered_history_to_host<Exec>(history_.partner, w, history_.slots, history_.strides);
+      gathered_history_to_host<Exec>(history_.partner, w, history_.slots, history_.strides, staging_);
   h.partner.resize(m * slots);
   for (std::size_t i = 0; i < m; ++i)
     for (std::size_t k = 0; k < slots; ++k) h.partner[i * slots + k] = partner[k * m + i];
   auto widen_springs = [&](const DeviceArray<Vec3<Real>>& a, std::vector<Vec3d>& out) {
-    const std::vector<Vec3<Real>> block = gathered_history_to_host<Exec>(a, w, history_.slots, history_.strides);
+    const std::vector<Vec3<Real>> block = gathered_history_to_host<Exec>(a, w, history_.slots, history_.strides, staging_);
     out.resize(m * slots);
     for (std::size_t i = 0; i < m; ++i)
       for (std::size_t k = 0; k < slots; ++k) out[i * slots + k] = Vec3d(block[k * m + i]);
@@ -107,10 +121,10 @@ ParticleRecords StepKernelsImpl<Exec, Real, Model, Effects>::export_particles(co
 
 template <class Exec, class Real, ContactModel Model, unsigned Effects>
 void StepKernelsImpl<Exec, Real, Model, Effects>::keep_owned(ParticleStore& s, const std::vector<Index>& keep) {
-  DeviceArray<Index> order(Exec::backend);
+  DeviceArray<Index>& order = staging_index_;
   order.from_host(keep);
   const Index n = Index(keep.size());
-  DeviceArray<unsigned char> tmp(Exec::backend);
+  DeviceArray<unsigned char>& tmp = staging_;
   gather_in_place<Exec>(s.id, order.data(), n, tmp);
   gather_in_place<Exec>(s.material, order.data(), n, tmp);
   gather_in_place<Exec>(s.marker, order.data(), n, tmp);
@@ -160,12 +174,12 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::append(ParticleStore& s, const
   std::vector<ParticleId> partner(slots * count);
   for (std::size_t i = 0; i < count; ++i)
     for (std::size_t k = 0; k < slots; ++k) partner[k * count + i] = h.partner[i * slots + k];
-  scatter_history_from_host<Exec>(history_.partner, partner, h.slots, history_.strides, Index(first));
+  scatter_history_from_host<Exec>(history_.partner, partner, h.slots, history_.strides, Index(first), staging_);
   auto narrow_springs = [&](const std::vector<Vec3d>& from, DeviceArray<Vec3<Real>>& a) {
     std::vector<Vec3<Real>> block(slots * count);
     for (std::size_t i = 0; i < count; ++i)
       for (std::size_t k = 0; k < slots; ++k) block[k * count + i] = Vec3<Real>(from[i * slots + k]);
-    scatter_history_from_host<Exec>(a, block, h.slots, history_.strides, Index(first));
+    scatter_history_from_host<Exec>(a, block, h.slots, history_.strides, Index(first), staging_);
   };
   if constexpr ((Effects & kFriction) != 0) narrow_springs(h.tangential, history_.tangential);
   if constexpr ((Effects & kRollingResistance) != 0) narrow_springs(h.rolling, history_.rolling);
