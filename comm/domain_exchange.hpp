@@ -27,6 +27,7 @@ class DomainExchange final : public RankExchange {
   bool rebalance(ParticleStore& s, StepKernels& k) override;
   std::string first_fault(const std::string& local) override;
   long long total(long long local) override;
+  void sum(std::vector<double>& values) override { transport_.sum(values); }
   std::string describe() const override { return decomposition_->describe(); }
   double seconds() const override { return seconds_; }
 

@@ -85,6 +85,10 @@ class MpiTransport final : public Transport {
     GS_MPI_CHECK(MPI_Allreduce(MPI_IN_PLACE, values.data(), int(values.size()), MPI_INT64_T, MPI_SUM,
                                MPI_COMM_WORLD));
   }
+  void sum(std::vector<double>& values) override {
+    GS_MPI_CHECK(MPI_Allreduce(MPI_IN_PLACE, values.data(), int(values.size()), MPI_DOUBLE, MPI_SUM,
+                               MPI_COMM_WORLD));
+  }
   int min(int value) override {
     GS_MPI_CHECK(MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD));
     return value;

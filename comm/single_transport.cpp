@@ -16,6 +16,7 @@ class SingleTransport final : public Transport {
     recv.clear();
   }
   void sum(std::vector<std::int64_t>&) override {}
+  void sum(std::vector<double>&) override {}
   int min(int value) override { return value; }
   std::vector<Bytes> gather(const Bytes& local) override { return {local}; }
   Bytes broadcast(const Bytes& data, int) override { return data; }

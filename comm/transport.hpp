@@ -23,6 +23,9 @@ class Transport {
   // lists the same pairs (a in b's peers iff b in a's). Collective over peers.
   virtual void exchange(const std::vector<int>& peers, const std::vector<Bytes>& send, std::vector<Bytes>& recv) = 0;
   virtual void sum(std::vector<std::int64_t>& values) = 0;  // all-reduce, in place
+  // All-reduce, in place. The grouping of the additions is MPI's: the result
+  // is not bitwise independent of the rank count (use it for reported totals).
+  virtual void sum(std::vector<double>& values) = 0;
   virtual int min(int value) = 0;                           // all-reduce
   // Every rank's bytes in rank order on rank 0; empty elsewhere.
   virtual std::vector<Bytes> gather(const Bytes& local) = 0;

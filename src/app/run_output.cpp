@@ -45,9 +45,14 @@ RunOutput::RunOutput(const SceneSpec& scene, const std::string& directory, Trans
     mixing_log_ = std::make_unique<MixingLog>(
         *scene.mixing, log_path.is_absolute() ? log_path.string() : directory_ + "/" + log_path.string());
   }
-  if (std::ftell(timeseries_) == 0)
+  if (std::ftell(timeseries_) == 0) {
     std::fprintf(timeseries_, "step,time,particles,kinetic_energy_translational,kinetic_energy_rotational,"
-                              "max_speed,contacts\n");
+                              "max_speed,contacts");
+    // Load of the particles on each mesh: force, torque about its rotation centre.
+    for (std::int32_t k = 0; k < scene.meshes.n_meshes(); ++k)
+      for (const char* c : {"fx", "fy", "fz", "tx", "ty", "tz"}) std::fprintf(timeseries_, ",mesh%d_%s", int(k), c);
+    std::fprintf(timeseries_, "\n");
+  }
 }
 
 RunOutput::~RunOutput() {
@@ -67,6 +72,10 @@ void RunOutput::log(const char* format, ...) {
 }
 
 void RunOutput::snapshot(const Simulation& sim) {
+  std::vector<double> mesh_load;  // per mesh: fx fy fz tx ty tz, summed over ranks (collective)
+  for (const MeshLoad& l : sim.mesh_loads())
+    mesh_load.insert(mesh_load.end(), {l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y, l.torque.z});
+  if (!mesh_load.empty()) transport_.sum(mesh_load);  // every rank has the same meshes
   const ParticleSnapshot local = sim.snapshot();
   const ParticleSnapshot s = gather_snapshot(transport_, local);
   const bool need_history = uses_history(scene_.effects);
@@ -94,8 +103,10 @@ void RunOutput::snapshot(const Simulation& sim) {
     max_speed = std::max(max_speed, norm(s.velocity[i]));
     n_contacts += contacts[i];
   }
-  std::fprintf(timeseries_, "%lld,%.17g,%zu,%.17g,%.17g,%.17g,%lld\n", s.step, s.time, s.size(), translational,
+  std::fprintf(timeseries_, "%lld,%.17g,%zu,%.17g,%.17g,%.17g,%lld", s.step, s.time, s.size(), translational,
                rotational, max_speed, need_history ? n_contacts : -1LL);
+  for (double x : mesh_load) std::fprintf(timeseries_, ",%.17g", x);
+  std::fprintf(timeseries_, "\n");
   std::fflush(timeseries_);
 }
 

@@ -4,15 +4,20 @@
 namespace gs {
 
 // Global particle id, unique across ranks and stable for a particle's life.
-// 32 bits keep the per-step sort key (cell, id) in one 64-bit word; the top
-// 256 values are reserved for wall partners in the contact history.
+// 32 bits keep the per-step sort key (cell, id) in one 64-bit word. Partner
+// ids of the contact history: particles below kMeshPartnerBase, mesh features
+// in [kMeshPartnerBase, kWallPartnerBase), analytic walls in the top 256 values.
 using ParticleId = std::uint32_t;
 // Local (per-rank) particle index.
 using Index = std::int32_t;
 
 constexpr ParticleId kNoPartner = 0xFFFFFFFFu;
 constexpr ParticleId kWallPartnerBase = 0xFFFFFF00u;  // wall w is partner kWallPartnerBase + w
-constexpr ParticleId kMaxParticleId = kWallPartnerBase - 1;
+// Mesh feature (kind k: 0 face, 1 edge, 2 vertex; index n < kMaxMeshFeatures)
+// is partner kMeshPartnerBase | k << 28 | n (mesh_partner_id, engine/force_kernel.hpp).
+constexpr ParticleId kMeshPartnerBase = 0xC0000000u;
+constexpr std::int32_t kMaxMeshFeatures = 1 << 28;  // triangles, edges and vertices of all meshes, each
+constexpr ParticleId kMaxParticleId = kMeshPartnerBase - 1;
 constexpr int kMaxWalls = 255;
 constexpr int kMaxContactSlots = 32;  // one bit per slot in a 32-bit mask
 

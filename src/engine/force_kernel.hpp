@@ -6,13 +6,22 @@
 // contact forces is therefore taken in one canonical order, independent of
 // thread scheduling and of how particles are split across ranks. The three
 // cells dx = -1, 0, 1 of a row are consecutive in the cell list, so a row is
-// read as one range, in that same order.
+// read as one range, in that same order. Triangle meshes come last, their
+// contacts in ascending triangle order of the particle's cell list.
 #include "contact/contact_slots.hpp"
 #include "core/materials.hpp"
 #include "neighbor/cell_grid.hpp"
+#include "walls/sphere_triangle.hpp"
 #include "walls/wall_geometry.hpp"
 
 namespace gs {
+
+// History partner id of a mesh feature (core/types.hpp): the two kind bits of
+// mesh_feature_key moved down to bits 28-29, under the mesh range's prefix.
+// Feature indices are below kMaxMeshFeatures (checked by the Simulation).
+GS_HD GS_INLINE ParticleId mesh_partner_id(std::uint32_t feature_key) {
+  return kMeshPartnerBase | ((feature_key >> 30) << 28) | (feature_key & 0x0FFFFFFFu);
+}
 
 template <class Real, ContactModel Model, unsigned Effects>
 struct ForceKernel {
@@ -32,6 +41,8 @@ struct ForceKernel {
   PairTable<Real> pairs;
   const Wall* walls;
   int n_walls;
+  MeshView meshes;          // n_triangles == 0: the scene has no mesh, the loop is skipped
+  MeshLoad* mesh_load;      // per owned particle x mesh: its load on the mesh; null without meshes
   SlotTable<Real, Effects> history;
   // Outputs
   Vec3<Real>* force;
@@ -64,12 +75,60 @@ struct ForceKernel {
       }
     }
     for (int w = 0; w < n_walls; ++w) add_wall_contact(i, w, xi, total, touched);
+    // One uniform branch per particle when the scene has no mesh (docs/MESHES.md, cost).
+    if (meshes.n_triangles > 0) add_mesh_contacts(i, xi, total, touched);
     if constexpr (SlotTable<Real, Effects>::kActive) history.release_untouched(i, touched);
     force[i] = total.force;
     if constexpr (kTorque) torque[i] = total.torque;
   }
 
  private:
+  // Visitor of for_each_mesh_contact: one mesh contact of particle i.
+  struct MeshContactVisitor {
+    const ForceKernel* kernel;
+    Index i;
+    Vec3d xi;
+    ContactLoad<Real>* total;
+    unsigned* touched;
+    GS_HD void operator()(const MeshContact& c) const { kernel->add_mesh_contact(i, xi, c, *total, *touched); }
+  };
+
+  GS_HD void add_mesh_contacts(Index i, const Vec3d& xi, ContactLoad<Real>& total, unsigned& touched) const {
+    if (mesh_load)
+      for (int m = 0; m < meshes.n_meshes; ++m) mesh_load[std::size_t(i) * meshes.n_meshes + m] = MeshLoad{};
+    MeshContactVisitor visit{this, i, xi, &total, &touched};
+    for_each_mesh_contact(meshes, grid, xi, double(radius[i]), visit);
+  }
+
+  // As a wall contact, at the mesh feature's contact point; the load on the
+  // mesh is the reaction: minus the force, and minus the moment about the
+  // mesh's rotation centre c of the force at the particle centre plus the
+  // torque about it ((x_i - c) x F + T, which includes the rolling couple).
+  GS_HD void add_mesh_contact(Index i, const Vec3d& xi, const MeshContact& c, ContactLoad<Real>& total,
+                              unsigned& touched) const {
+    const MeshPose& pose = meshes.pose[c.mesh];
+    ContactKinematics<Real> k;
+    k.overlap = Real(c.overlap);
+    k.normal = Vec3<Real>(c.normal);
+    const Real ri = radius[i];
+    k.lever = ri - k.overlap;
+    const Vec3<Real> wi(angular_velocity[i]);
+    k.velocity = Vec3<Real>(velocity[i] - c.wall_velocity) - cross(wi * k.lever, k.normal);
+    k.angular_velocity = wi - Vec3<Real>(pose.angular_velocity);
+    k.effective_mass = mass[i];
+    k.effective_radius = ri;
+    const ContactLoad<Real> load = apply(i, mesh_partner_id(c.feature_key),
+                                         pairs(material[i], meshes.material[c.mesh]), k, total, touched);
+    if (mesh_load) {
+      MeshLoad& on_mesh = mesh_load[std::size_t(i) * meshes.n_meshes + c.mesh];
+      const Vec3d f(load.force);
+      Vec3d moment = cross(xi - (pose.axis_point + pose.shift), f);
+      if constexpr (kTorque) moment += Vec3d(load.torque);
+      on_mesh.force -= f;
+      on_mesh.torque -= moment;
+    }
+  }
+
   GS_HD void add_particle_contact(Index i, Index j, const Vec3d& xi, ContactLoad<Real>& total,
                                   unsigned& touched) const {
     const Vec3d d = xi - position[j];
@@ -108,8 +167,8 @@ struct ForceKernel {
     apply(i, kWallPartnerBase + ParticleId(w), pairs(material[i], walls[w].material), k, total, touched);
   }
 
-  GS_HD void apply(Index i, ParticleId partner_id, const PairParams<Real>& p, const ContactKinematics<Real>& k,
-                   ContactLoad<Real>& total, unsigned& touched) const {
+  GS_HD ContactLoad<Real> apply(Index i, ParticleId partner_id, const PairParams<Real>& p,
+                                const ContactKinematics<Real>& k, ContactLoad<Real>& total, unsigned& touched) const {
     ContactSprings<Real> springs;
     int slot = -1;
     if constexpr (SlotTable<Real, Effects>::kActive) {
@@ -127,6 +186,7 @@ struct ForceKernel {
     }
     total.force += load.force;
     if constexpr (kTorque) total.torque += load.torque;
+    return load;
   }
 };
 

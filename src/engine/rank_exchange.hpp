@@ -31,6 +31,9 @@ class RankExchange {
   virtual std::string first_fault(const std::string& local) = 0;
   // Collective: particles on all ranks.
   virtual long long total(long long local) = 0;
+  // Collective: element-wise sum over ranks, in place (e.g. mesh loads). Not
+  // bitwise independent of the rank count.
+  virtual void sum(std::vector<double>& values) = 0;
 
   virtual std::string describe() const = 0;  // partition and imbalance, for the log
   virtual double seconds() const = 0;        // wall time spent exchanging so far

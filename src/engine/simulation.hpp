@@ -63,6 +63,13 @@ class Simulation {
   Index particle_count() const { return store_.n_owned; }  // owned by this rank
   RankExchange* exchange() const { return exchange_.get(); }
   const std::vector<Wall>& walls() const { return walls_; }  // posed at time()
+  const MeshSet& meshes() const { return meshes_; }           // posed at time()
+  // Load of this rank's owned particles on each mesh (force, and torque about
+  // the mesh's rotation centre), from the last force computation, summed in
+  // particle id order (deterministic). With several ranks the caller sums
+  // over ranks (RankExchange::sum): a total that is not bitwise independent
+  // of the rank count, as any sum of doubles in a different grouping.
+  std::vector<MeshLoad> mesh_loads() const;
 
   ParticleSnapshot snapshot() const;  // this rank's owned particles
   HostHistory history() const;  // in snapshot (id) order
@@ -74,6 +81,7 @@ class Simulation {
   void upload(const std::vector<ParticleInit>& particles);
   void restore(const RestartState& restart);
   void move_walls(double t);
+  void pose_meshes(double t);
   void rebuild_cells();
   void step_particles_between_ranks();
   void check_fault();
@@ -87,6 +95,10 @@ class Simulation {
   CellGrid grid_;
   std::vector<Wall> walls_;
   bool walls_move_ = false;
+  MeshSet meshes_;
+  bool meshes_move_ = false;
+  double mesh_skin_ = 0;               // rebin when a vertex has moved further than this
+  std::vector<Vec3d> binned_vertex_;   // vertices at the last binning
   double time_ = 0;
   long long step_ = 0;
   StepTimings timings_;

@@ -27,6 +27,11 @@ class StepKernels {
   // ghosts); keeps the history of the first n_keep.
   virtual void reserve(Index n) = 0;
   virtual void set_walls(const std::vector<Wall>& walls) = 0;
+  // Triangle meshes (walls/mesh.hpp): everything once, then the vertices and
+  // poses each step the meshes move, and the cell bins when rebinned.
+  virtual void set_meshes(const MeshSet& meshes) = 0;
+  virtual void set_mesh_pose(const MeshSet& meshes) = 0;
+  virtual void set_mesh_bins(const MeshBins& bins) = 0;
 
   virtual void kick_drift(ParticleStore& s, const IntegrationParams& p) = 0;
   virtual void build_cell_list(ParticleStore& s, const CellGrid& grid) = 0;
@@ -42,6 +47,9 @@ class StepKernels {
   virtual std::vector<Vec3d> forces(const ParticleStore& s) const = 0;
   virtual std::vector<Vec3d> torques(const ParticleStore& s) const = 0;
   virtual HostHistory history(const ParticleStore& s) const = 0;
+  // Load of each owned particle (store order) on each mesh, entry
+  // i * n_meshes + m, from the last force computation; empty without meshes.
+  virtual std::vector<MeshLoad> particle_mesh_loads(const ParticleStore& s) const = 0;
   virtual void set_history(const ParticleStore& s, const HostHistory& h) = 0;
 
   // Data movement between ranks (comm/). Host copies of particles `which`

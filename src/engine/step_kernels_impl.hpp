@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "engine/force_kernel.hpp"
+#include "engine/mesh_arrays.hpp"
 #include "engine/step_kernels.hpp"
 #include "neighbor/cell_list.hpp"
 
@@ -25,7 +26,8 @@ class StepKernelsImpl final : public StepKernels {
 
  public:
   StepKernelsImpl(const PairTableHost& table, int slots)
-      : pairs_(Exec::backend), walls_(Exec::backend), fault_(Exec::backend, 1), cells_(Exec::backend) {
+      : pairs_(Exec::backend), walls_(Exec::backend), meshes_(Exec::backend), fault_(Exec::backend, 1),
+        cells_(Exec::backend) {
     upload_pairs(table);
     fault_.zero();
     history_.slots = kHistory ? slots : 0;
@@ -40,12 +42,20 @@ class StepKernelsImpl final : public StepKernels {
     forces_.force.resize(n);
     if (kTorque) forces_.torque.resize(n);
     if (kHistory && std::size_t(n) > history_.capacity) grow_history(std::size_t(n));
+    meshes_.reserve(std::size_t(n));
   }
 
   void set_walls(const std::vector<Wall>& walls) override {
     walls_.from_host(walls);
     n_walls_ = int(walls.size());
   }
+  void set_meshes(const MeshSet& meshes) override {
+    meshes_.set(meshes);
+    meshes_.reserve(forces_.force.size());
+    meshes_.load.zero();
+  }
+  void set_mesh_pose(const MeshSet& meshes) override { meshes_.set_pose(meshes); }
+  void set_mesh_bins(const MeshBins& bins) override { meshes_.set_bins(bins); }
 
   void kick_drift(ParticleStore& s, const IntegrationParams& p) override {
     KickDrift<Real> f{half_kick(s, 0.5 * p.dt, p.gravity), s.position.data(), s.orientation.data(), s.id.data(), p,
@@ -66,7 +76,8 @@ class StepKernelsImpl final : public StepKernels {
                                         s.position.data(), s.velocity.data(), s.angular_velocity.data(),
                                         cells_.grid, cells_.sorted.data(), cells_.cell_begin.data(),
                                         PairTable<Real>{pairs_.data(), n_materials_},
-                                        walls_.data(), n_walls_, slot_table(), forces_.force.data(),
+                                        walls_.data(), n_walls_, meshes_.view(), meshes_.loads(),
+                                        slot_table(), forces_.force.data(),
                                         kTorque ? forces_.torque.data() : nullptr, Real(dt), fault_.data(), step};
     Exec::parallel_for(s.n_owned, k);
   }
@@ -86,6 +97,12 @@ class StepKernelsImpl final : public StepKernels {
     return widen(forces_.torque, s.n_owned);
   }
   HostHistory history(const ParticleStore& s) const override;
+  std::vector<MeshLoad> particle_mesh_loads(const ParticleStore& s) const override {
+    if (meshes_.n_triangles == 0) return {};
+    std::vector<MeshLoad> h = meshes_.load.to_host();
+    h.resize(std::size_t(s.n_owned) * std::size_t(meshes_.n_meshes));
+    return h;
+  }
   ParticleRecords export_particles(const ParticleStore& s, const std::vector<Index>& which,
                                    bool with_history) const override;
   void keep_owned(ParticleStore& s, const std::vector<Index>& keep) override;
@@ -94,6 +111,7 @@ class StepKernelsImpl final : public StepKernels {
     forces_.force.from_host(narrowed(force, s.n_owned));
     if (kTorque) forces_.torque.from_host(narrowed(torque, s.n_owned));
     reserve(s.size());
+    meshes_.load.zero();  // a restart reports no mesh load before its first step
   }
   void set_history(const ParticleStore& s, const HostHistory& h) override;
 
@@ -132,6 +150,7 @@ class StepKernelsImpl final : public StepKernels {
   int n_materials_ = 0;
   DeviceArray<Wall> walls_;
   int n_walls_ = 0;
+  DeviceMeshes meshes_;
   DeviceArray<Fault> fault_;
   CellList cells_;
   ForceArrays<Real> forces_;

@@ -8,6 +8,7 @@
 #include "analysis/mixing_spec.hpp"
 #include "core/types.hpp"
 #include "core/vec3.hpp"
+#include "walls/mesh.hpp"
 #include "walls/wall.hpp"
 
 namespace gs {
@@ -75,6 +76,7 @@ struct SceneSpec {
   std::vector<ParticleInit> particles;
   std::vector<Wall> walls;
   std::vector<std::string> wall_names;
+  MeshSet meshes;                    // triangle-mesh walls (docs/MESHES.md); names in meshes.names
   double time_step = 0;              // resolved absolute time step [s]
   double contact_time = 0;           // shortest pair contact time [s]
   double duration = 0;               // simulated time [s]

@@ -142,6 +142,7 @@ void require_pairs(const SceneSpec& s, const Val& where) {
   std::vector<char> on_particle(n, 0), on_wall(n, 0);
   for (const auto& p : s.particles) on_particle[p.material] = 1;
   for (const auto& w : s.walls) on_wall[w.material] = 1;
+  for (const auto m : s.meshes.material) on_wall[m] = 1;
   for (std::size_t a = 0; a < n; ++a)
     for (std::size_t b = a; b < n; ++b) {
       const bool touch = (on_particle[a] && (on_particle[b] || on_wall[b])) || (on_wall[a] && on_particle[b]);

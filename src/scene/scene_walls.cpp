@@ -1,9 +1,12 @@
 // The `walls:` section of a scene and the t = 0 wall geometry checks.
 #include <cmath>
+#include <filesystem>
 #include <map>
+#include <stdexcept>
 
 #include "scene/scene_loader.hpp"
 #include "scene/scene_sections.hpp"
+#include "walls/stl.hpp"
 
 namespace gs {
 
@@ -40,9 +43,15 @@ void parse_motion(const Val& v, Wall& w) {
   w.angular_velocity = axis * (number(r.get("rpm")) * 2.0 * M_PI / 60.0);
 }
 
-void add_wall(SceneSpec& s, const Wall& w, const std::string& name, const Val& where) {
+void check_new_name(const SceneSpec& s, const std::string& name, const Val& where) {
   for (const auto& other : s.wall_names)
     if (other == name) fail(where, "wall name '" + name + "' is used twice");
+  for (const auto& other : s.meshes.names)
+    if (other == name) fail(where, "wall name '" + name + "' is used twice");
+}
+
+void add_wall(SceneSpec& s, const Wall& w, const std::string& name, const Val& where) {
+  check_new_name(s, name, where);
   s.walls.push_back(w);
   s.wall_names.push_back(name);
 }
@@ -101,6 +110,37 @@ void add_cylinder(SceneSpec& s, const Wall& proto, const Val& v, const std::stri
   }
 }
 
+// A triangle mesh from an STL file (relative to the scene file), with the
+// entry's material and motion (docs/MESHES.md).
+void add_mesh_wall(SceneSpec& s, const Wall& proto, const Val& v, const std::string& name) {
+  const Map m(v, {"stl", "scale", "weld_tolerance", "crease_angle"});
+  check_new_name(s, name, v);
+  const Val file = m.get("stl");
+  std::filesystem::path path(text(file));
+  if (path.is_relative()) path = std::filesystem::path(s.path).parent_path() / path;
+  StlReadOptions options;
+  options.scale = number_or(m, "scale", 1.0, positive);
+  options.weld_tolerance = number_or(m, "weld_tolerance", 0.0, nonnegative);
+  const double crease = number_or(m, "crease_angle", kDefaultCreaseAngleDeg, nonnegative);
+  if (!(crease < 90)) fail(m.get("crease_angle"), "must be below 90 degrees");
+  TriangleMesh mesh;
+  try {
+    mesh = read_stl(path.string(), options);
+  } catch (const std::exception& e) {
+    fail(file, e.what());
+  }
+  mesh.name = name;
+  const MeshMotion motion{proto.velocity, proto.angular_velocity, proto.axis_point};
+  try {
+    add_mesh(s.meshes, mesh, proto.material, motion, crease);
+  } catch (const std::exception& e) {
+    fail(v, e.what());
+  }
+  if (s.meshes.n_triangles() >= kMaxMeshFeatures || s.meshes.n_vertices() >= kMaxMeshFeatures ||
+      s.meshes.n_edges >= kMaxMeshFeatures)
+    fail(v, "the scene's meshes exceed 2^28 triangles, edges or vertices");
+}
+
 }  // namespace
 
 int material_index(const SceneSpec& s, const Val& v) {
@@ -118,8 +158,8 @@ void parse_walls(const Map& top, SceneSpec& s) {
   if (!list.present()) return;
   std::map<std::string, int> unnamed;  // per kind, for default names box, box2, ...
   for_each_item(list, [&](const Val& item, std::size_t) {
-    const Map m(item, {"plane", "box", "cylinder", "name", "material", "motion"});
-    const std::string kind = m.one_of({"plane", "box", "cylinder"});
+    const Map m(item, {"plane", "box", "cylinder", "mesh", "name", "material", "motion"});
+    const std::string kind = m.one_of({"plane", "box", "cylinder", "mesh"});
     Wall proto;
     proto.material = material_index(s, m.get("material"));
     if (m.has("motion")) parse_motion(m.get("motion"), proto);
@@ -133,6 +173,7 @@ void parse_walls(const Map& top, SceneSpec& s) {
     if (kind == "plane") add_plane(s, proto, shape, name);
     if (kind == "box") add_box(s, proto, shape, name);
     if (kind == "cylinder") add_cylinder(s, proto, shape, name);
+    if (kind == "mesh") add_mesh_wall(s, proto, shape, name);
   });
   if (s.walls.size() > std::size_t(kMaxWalls))
     fail(list, "the entries expand to " + std::to_string(s.walls.size()) + " walls; at most " +

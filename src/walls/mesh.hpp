@@ -70,6 +70,13 @@ struct MeshView {
   }
 };
 
+// Load that particles put on one mesh: the force and the torque about the
+// mesh's rotation centre where it is now (axis_point + shift of its pose).
+struct MeshLoad {
+  Vec3d force;   // [N]
+  Vec3d torque;  // [N m]
+};
+
 // Host storage of all meshes of a scene, concatenated in input order.
 struct MeshSet {
   std::vector<std::string> names;             // per mesh

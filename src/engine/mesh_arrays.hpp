@@ -1,0 +1,83 @@
+#pragma once
+// The scene's triangle meshes in a backend's memory, and the per-particle
+// loads on them (walls/mesh.hpp has the layout). Topology and materials are
+// uploaded once, vertices and poses every step the meshes move, bins when they
+// are rebinned. Empty, and never read by a kernel, when the scene has none.
+#include <vector>
+
+#include "backend/device_array.hpp"
+#include "walls/mesh.hpp"
+
+namespace gs {
+
+struct DeviceMeshes {
+  explicit DeviceMeshes(Backend b)
+      : vertex(b), corners(b), edges(b), edge_ends(b), owned(b), mesh(b), pose(b), material(b), crease_cos(b),
+        cell_begin(b), cell_triangles(b), load(b) {}
+
+  DeviceArray<Vec3d> vertex;
+  DeviceArray<MeshCorners> corners;
+  DeviceArray<MeshEdges> edges;
+  DeviceArray<EdgeEnds> edge_ends;
+  DeviceArray<std::uint8_t> owned;
+  DeviceArray<std::int32_t> mesh;
+  DeviceArray<MeshPose> pose;
+  DeviceArray<std::int32_t> material;
+  DeviceArray<double> crease_cos;
+  DeviceArray<std::int32_t> cell_begin, cell_triangles;
+  DeviceArray<MeshLoad> load;  // per particle x mesh
+  std::int32_t n_triangles = 0, n_meshes = 0;
+
+  void set(const MeshSet& s) {
+    n_triangles = s.n_triangles();
+    n_meshes = s.n_meshes();
+    corners.from_host(s.corners);
+    edges.from_host(s.edges);
+    edge_ends.from_host(s.edge_ends);
+    owned.from_host(s.owned);
+    mesh.from_host(s.mesh);
+    material.from_host(s.material);
+    crease_cos.from_host(s.crease_cos);
+    set_pose(s);
+  }
+  void set_pose(const MeshSet& s) {
+    vertex.from_host(s.vertex);
+    pose.from_host(s.pose);
+  }
+  void set_bins(const MeshBins& b) {
+    cell_begin.from_host(b.cell_begin);
+    cell_triangles.from_host(b.triangles);
+  }
+  // Room for the loads of n particles (only when there are meshes).
+  void reserve(std::size_t n) {
+    if (n_triangles > 0) load.resize(n * std::size_t(n_meshes));
+  }
+
+  MeshView view() const {
+    MeshView v;
+    if (n_triangles == 0) return v;
+    v.vertex = vertex.data();
+    v.corners = corners.data();
+    v.edges = edges.data();
+    v.edge_ends = edge_ends.data();
+    v.owned = owned.data();
+    v.mesh = mesh.data();
+    v.pose = pose.data();
+    v.material = material.data();
+    v.crease_cos = crease_cos.data();
+    v.n_triangles = n_triangles;
+    v.n_meshes = n_meshes;
+    v.cell_begin = cell_begin.data();
+    v.cell_triangles = cell_triangles.data();
+    return v;
+  }
+  MeshLoad* loads() { return n_triangles > 0 ? load.data() : nullptr; }
+
+  std::size_t bytes() const {
+    return vertex.bytes() + corners.bytes() + edges.bytes() + edge_ends.bytes() + owned.bytes() + mesh.bytes() +
+           pose.bytes() + material.bytes() + crease_cos.bytes() + cell_begin.bytes() + cell_triangles.bytes() +
+           load.bytes();
+  }
+};
+
+}  // namespace gs
