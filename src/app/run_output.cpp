@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "analysis/mixing.hpp"
+#include "analysis/wall_loads.hpp"
 #include "comm/snapshot_gather.hpp"
 #include "io/h5_snapshot.hpp"
 #include "io/particle_csv.hpp"
@@ -48,7 +49,11 @@ RunOutput::RunOutput(const SceneSpec& scene, const std::string& directory, Trans
   if (std::ftell(timeseries_) == 0) {
     std::fprintf(timeseries_, "step,time,particles,kinetic_energy_translational,kinetic_energy_rotational,"
                               "max_speed,contacts");
-    // Load of the particles on each mesh: force, torque about its rotation centre.
+    // Load of the particles on each wall and mesh: force, torque about its rotation centre.
+    for (std::size_t k = 0; k < scene.walls.size(); ++k)
+      for (const char* c : {"fx", "fy", "fz", "tx", "ty", "tz"})
+        std::fprintf(timeseries_, ",wall_%s_%s",
+                     k < scene.wall_names.size() ? scene.wall_names[k].c_str() : std::to_string(k).c_str(), c);
     for (std::int32_t k = 0; k < scene.meshes.n_meshes(); ++k)
       for (const char* c : {"fx", "fy", "fz", "tx", "ty", "tz"}) std::fprintf(timeseries_, ",mesh%d_%s", int(k), c);
     std::fprintf(timeseries_, "\n");
@@ -105,6 +110,9 @@ void RunOutput::snapshot(const Simulation& sim) {
   }
   std::fprintf(timeseries_, "%lld,%.17g,%zu,%.17g,%.17g,%.17g,%lld", s.step, s.time, s.size(), translational,
                rotational, max_speed, need_history ? n_contacts : -1LL);
+  for (const MeshLoad& l : wall_loads(scene_, sim.walls(), s, h))
+    for (double x : {l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y, l.torque.z})
+      std::fprintf(timeseries_, ",%.17g", x);
   for (double x : mesh_load) std::fprintf(timeseries_, ",%.17g", x);
   std::fprintf(timeseries_, "\n");
   std::fflush(timeseries_);

@@ -1,0 +1,84 @@
+#include "analysis/wall_loads.hpp"
+
+#include "contact/contact_law.hpp"
+#include "engine/step_kernels.hpp"
+#include "walls/wall_geometry.hpp"
+
+namespace gs {
+namespace {
+
+PairParams<double> pair_params(const PairTableHost& t, int a, int b) {
+  const std::size_t k = std::size_t(a) * std::size_t(t.n_materials) + std::size_t(b);
+  return {t.stiffness_normal[k], t.stiffness_tangential[k], t.stiffness_rolling[k], t.damping_ratio[k],
+          t.friction[k],         t.rolling_friction[k],     t.cohesion[k],          t.youngs_modulus_eff[k],
+          t.shear_modulus_eff[k]};
+}
+
+// The stored springs of particle i's contact with wall w (zero when none).
+ContactSprings<double> stored_springs(const HostHistory& h, std::size_t i, int w) {
+  ContactSprings<double> springs;
+  const std::size_t k = std::size_t(h.slots);
+  for (std::size_t s = 0; s < k; ++s) {
+    if (h.partner[i * k + s] != kWallPartnerBase + ParticleId(w)) continue;
+    if (!h.tangential.empty()) springs.tangential = h.tangential[i * k + s];
+    if (!h.rolling.empty()) springs.rolling = h.rolling[i * k + s];
+  }
+  return springs;
+}
+
+template <ContactModel Model, unsigned Effects>
+std::vector<MeshLoad> loads(const SceneSpec& scene, const std::vector<Wall>& walls, const ParticleSnapshot& s,
+                            const HostHistory& h) {
+  const PairTableHost table = make_pair_table(scene);
+  std::vector<MeshLoad> out(walls.size());
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+      WallContact wc;
+      if (!wall_contact(walls[w], s.position[i], double(s.radius[i]), wc)) continue;
+      ContactKinematics<double> k;
+      k.overlap = wc.overlap;
+      k.normal = wc.normal;
+      k.lever = double(s.radius[i]) - k.overlap;
+      k.velocity = s.velocity[i] - wc.wall_velocity - cross(s.angular_velocity[i] * k.lever, k.normal);
+      k.angular_velocity = s.angular_velocity[i] - walls[w].angular_velocity;
+      k.effective_mass = s.mass[i];
+      k.effective_radius = s.radius[i];
+      ContactSprings<double> springs = h.slots > 0 ? stored_springs(h, i, int(w)) : ContactSprings<double>();
+      const ContactLoad<double> load = contact_load<double, Model, Effects>(
+          pair_params(table, s.material[i], walls[w].material), k, springs, 0.0);
+      // The wall feels the opposite of what the particle feels.
+      const Vec3d centre = walls[w].axis_point + walls[w].shift;
+      out[w].force -= load.force;
+      out[w].torque -= cross(wc.point - centre, load.force);
+      if constexpr ((Effects & (kFriction | kRollingResistance)) != 0) {
+        // The particle's couple about its centre, moved to the contact point.
+        out[w].torque -= load.torque - cross(wc.point - s.position[i], load.force);
+      }
+    }
+  return out;
+}
+
+template <ContactModel Model>
+std::vector<MeshLoad> for_effects(const SceneSpec& scene, const std::vector<Wall>& walls, const ParticleSnapshot& s,
+                                  const HostHistory& h) {
+  switch (scene.effects & kAllEffects) {
+    case 0: return loads<Model, 0>(scene, walls, s, h);
+    case 1: return loads<Model, 1>(scene, walls, s, h);
+    case 2: return loads<Model, 2>(scene, walls, s, h);
+    case 3: return loads<Model, 3>(scene, walls, s, h);
+    case 4: return loads<Model, 4>(scene, walls, s, h);
+    case 5: return loads<Model, 5>(scene, walls, s, h);
+    case 6: return loads<Model, 6>(scene, walls, s, h);
+    default: return loads<Model, 7>(scene, walls, s, h);
+  }
+}
+
+}  // namespace
+
+std::vector<MeshLoad> wall_loads(const SceneSpec& scene, const std::vector<Wall>& walls, const ParticleSnapshot& s,
+                                 const HostHistory& history) {
+  if (scene.model == ContactModel::linear) return for_effects<ContactModel::linear>(scene, walls, s, history);
+  return for_effects<ContactModel::hertz_mindlin>(scene, walls, s, history);
+}
+
+}  // namespace gs

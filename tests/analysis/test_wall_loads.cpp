@@ -1,0 +1,86 @@
+// Loads on analytic walls for the time series: the walls of a box hold a
+// settled pile (the side walls carry part of it by friction), so the loads on
+// all walls add up to its weight and their torques about a common point to
+// the weight's moment; a sphere held on an incline by friction loads the
+// plane with m g, split into normal and tangential parts.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "analysis/wall_loads.hpp"
+#include "contact/contact_time.hpp"
+#include "support/support.hpp"
+
+namespace gs::test {
+namespace {
+
+constexpr double kRadius = 0.0009765625, kDensity = 2500, kStiffness = 1000, kGravity = 9.81;
+
+TEST(WallLoads, WallsTogetherCarryTheSettledPile) {
+  SceneSpec scene = base_scene(kDensity, kStiffness, 0.1, 0.5);
+  scene.effects = kFriction;
+  scene.domain_min = {-0.006, -0.006, -0.001};
+  scene.domain_max = {0.006, 0.006, 0.02};
+  scene.gravity = {0, 0, -kGravity};
+  const Vec3d centre{-0.002, 0.001, 0};  // torques about an off-centre point
+  scene.walls = {plane_wall({0, 0, 0}, {0, 0, 1}), plane_wall({-0.005, 0, 0}, {1, 0, 0}),
+                 plane_wall({0.005, 0, 0}, {-1, 0, 0}), plane_wall({0, -0.005, 0}, {0, 1, 0}),
+                 plane_wall({0, 0.005, 0}, {0, -1, 0})};
+  for (Wall& w : scene.walls) w.axis_point = centre;
+  ParticleId id = 0;
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i)
+        scene.particles.push_back(particle(id++, kRadius, {-0.003 + 0.002 * i + 0.0001 * k, -0.003 + 0.002 * j,
+                                                           kRadius * (1.2 + 2.4 * k)}));
+  const double m = stored_sphere_mass(kRadius, kDensity);
+  scene.time_step = linear_contact_time(kStiffness, m / 2, 0.1) / 30;
+  Simulation sim(scene, {Backend::cpu});
+  sim.run(std::llround(0.5 / scene.time_step));
+  const ParticleSnapshot s = sim.snapshot();
+  const std::vector<MeshLoad> loads = wall_loads(scene, sim.walls(), s, sim.history());
+  const double weight = m * kGravity * double(s.size());
+  ASSERT_LT(std::sqrt(2 * kinetic_energy(s) / (m * double(s.size()))), 1e-4) << "the pile has not settled";
+  Vec3d force, torque;
+  for (const MeshLoad& l : loads) {
+    force += l.force;
+    torque += l.torque;
+  }
+  EXPECT_NEAR(force.z / -weight, 1.0, 1e-3);
+  EXPECT_NEAR(force.x / weight, 0.0, 1e-3);
+  EXPECT_NEAR(force.y / weight, 0.0, 1e-3);
+  EXPECT_GT(-loads[0].force.z, 0.5 * weight) << "the floor carries most of the pile";
+  // Moment of the weight about the centre: sum over particles of (x_i - c) x (0, 0, -m g).
+  Vec3d moment;
+  for (std::size_t i = 0; i < s.size(); ++i) moment += cross(s.position[i] - centre, Vec3d{0, 0, -m * kGravity});
+  EXPECT_NEAR(torque.x, moment.x, 1e-3 * weight * 0.005);
+  EXPECT_NEAR(torque.y, moment.y, 1e-3 * weight * 0.005);
+  EXPECT_NEAR(torque.z, 0.0, 1e-3 * weight * 0.005);
+}
+
+// One sphere held on a plane by gravity tilted 10 degrees, friction 0.5 and
+// rolling resistance holding it at rest: the wall carries m g exactly, normal
+// part m g cos(theta) and tangential part m g sin(theta).
+TEST(WallLoads, StickingSphereOnInclineCarriesFriction) {
+  SceneSpec scene = base_scene(kDensity, kStiffness, 0.3, 0.5);
+  scene.effects = kFriction | kRollingResistance;
+  scene.pairs[0].rolling_friction = 0.5;
+  scene.domain_min = {-0.004, -0.004, -0.004};
+  scene.domain_max = {0.004, 0.004, 0.004};
+  const double theta = 10.0 * M_PI / 180.0;
+  scene.gravity = {kGravity * std::sin(theta), 0, -kGravity * std::cos(theta)};
+  scene.walls = {plane_wall({0, 0, 0}, {0, 0, 1})};
+  const double m = stored_sphere_mass(kRadius, kDensity);
+  scene.particles = {particle(0, kRadius, {0, 0, kRadius - m * kGravity * std::cos(theta) / kStiffness})};
+  scene.time_step = linear_contact_time(kStiffness, m, 0.3) / 50;
+  Simulation sim(scene, {Backend::cpu});
+  sim.run(std::llround(0.1 / scene.time_step));
+  const ParticleSnapshot s = sim.snapshot();
+  ASSERT_LT(norm(s.velocity[0]), 1e-5);
+  const std::vector<MeshLoad> loads = wall_loads(scene, sim.walls(), s, sim.history());
+  EXPECT_NEAR(loads[0].force.z / (-m * kGravity * std::cos(theta)), 1.0, 1e-3);
+  EXPECT_NEAR(loads[0].force.x / (m * kGravity * std::sin(theta)), 1.0, 1e-2);
+}
+
+}  // namespace
+}  // namespace gs::test
