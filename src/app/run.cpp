@@ -118,7 +118,10 @@ int command_run(const std::vector<std::string>& args, Transport& transport) {
   out.log("grainstorm %s: %s, %lld particles, backend %s, %d rank%s, dt = %.4g s (contact time %.4g s), steps %lld to %lld\n",
           GS_VERSION, a.scene.c_str(), particles, backend_name(a.backend), transport.size(),
           transport.size() > 1 ? "s" : "", scene.time_step, scene.contact_time, sim->step_count(), total);
-  if (!a.restart.empty()) out.log("restarted from %s at step %lld\n", a.restart.c_str(), sim->step_count());
+  if (!a.restart.empty()) {
+    out.resume(sim->step_count());
+    out.log("restarted from %s at step %lld\n", a.restart.c_str(), sim->step_count());
+  }
   if (exchange) out.log("decomposition: %s\n", exchange->describe().c_str());
 
   const long long every = scene.output.interval > 0 ? steps_per(scene.output.interval, scene.time_step) : total;

@@ -1,5 +1,6 @@
 #include "app/run_output.hpp"
 
+#include <algorithm>
 #include <cstdarg>
 #include <filesystem>
 #include <stdexcept>
@@ -7,6 +8,8 @@
 #include "analysis/mixing.hpp"
 #include "analysis/wall_loads.hpp"
 #include "comm/snapshot_gather.hpp"
+#include "io/h5_io.hpp"
+#include "io/h5_meshes.hpp"
 #include "io/h5_snapshot.hpp"
 #include "io/particle_csv.hpp"
 #include "io/restart.hpp"
@@ -99,6 +102,13 @@ void RunOutput::snapshot(const Simulation& sim) {
     write_snapshot(directory_ + "/" + name, s, fields_, sim.walls(), m);
     series_.push_back(xdmf_entry(name, s, fields_));
     write_xdmf_series(directory_ + "/particles.xdmf", series_);
+    const MeshSet& meshes = sim.meshes();
+    if (meshes.n_triangles() > 0) {
+      const std::string mesh_file = meshes_h5_name(s.step);
+      write_meshes_h5(directory_ + "/" + mesh_file, meshes, s.time, s.step);
+      mesh_series_.push_back({s.time, mesh_file, std::size_t(meshes.n_vertices()), std::size_t(meshes.n_triangles())});
+      write_mesh_xdmf(directory_ + "/meshes.xdmf", mesh_series_);
+    }
   }
   double translational = 0, rotational = 0, max_speed = 0;
   long long n_contacts = 0;
@@ -122,6 +132,34 @@ void RunOutput::mixing(const Simulation& sim) {
   const ParticleSnapshot s = gather_snapshot(transport_, sim.snapshot());
   if (transport_.rank() != 0 || !mixing_log_) return;
   mixing_log_->append(evaluate_mixing(*scene_.mixing, s));
+}
+
+void RunOutput::resume(long long step) {
+  if (transport_.rank() != 0 || scene_.output.format != "hdf5") return;
+  std::vector<std::pair<long long, std::string>> files;
+  for (const auto& entry : std::filesystem::directory_iterator(directory_)) {
+    const std::string name = entry.path().filename().string();
+    long long s = -1;
+    if (std::sscanf(name.c_str(), "particles_%lld.h5", &s) == 1 && name == snapshot_h5_name(s) && s <= step)
+      files.emplace_back(s, name);
+  }
+  std::sort(files.begin(), files.end());
+  for (const auto& [s, name] : files) {
+    h5::File f = h5::File::open_read_only(directory_ + "/" + name);
+    XdmfEntry e;
+    e.time = h5::read_attribute<double>(f, "/", "time");
+    e.step = s;
+    e.h5_file = name;
+    e.particle_count = std::size_t(h5::read_attribute<std::int64_t>(f, "/", "particle_count"));
+    e.fields = fields_;
+    series_.push_back(e);
+    const std::string mesh_file = meshes_h5_name(s);
+    if (std::filesystem::exists(directory_ + "/" + mesh_file)) {
+      h5::File m = h5::File::open_read_only(directory_ + "/" + mesh_file);
+      mesh_series_.push_back({e.time, mesh_file, std::size_t(h5::dims_of(m, "/vertices")[0]),
+                              std::size_t(h5::dims_of(m, "/triangles")[0])});
+    }
+  }
 }
 
 void RunOutput::checkpoint(const Simulation& sim) {

@@ -11,6 +11,7 @@
 #include "analysis/mixing_log.hpp"
 #include "comm/transport.hpp"
 #include "engine/simulation.hpp"
+#include "io/h5_meshes.hpp"
 #include "io/snapshot_fields.hpp"
 #include "io/xdmf_series.hpp"
 
@@ -26,6 +27,9 @@ class RunOutput {
   void snapshot(const Simulation& sim);    // and a time-series row
   void checkpoint(const Simulation& sim);  // keeps the newest two
   void mixing(const Simulation& sim);      // one row of the mixing analysis (scene.mixing)
+  // After a restart at `step`: the XDMF indexes keep the snapshots written
+  // before it (read back from the files in the output directory).
+  void resume(long long step);
   // printf to stdout and the log file, rank 0 only.
   void log(const char* format, ...) __attribute__((format(printf, 2, 3)));
 
@@ -36,6 +40,7 @@ class RunOutput {
   std::uint64_t scene_hash_;
   SnapshotFields fields_;
   std::vector<XdmfEntry> series_;
+  std::vector<MeshSeriesEntry> mesh_series_;
   std::vector<std::string> checkpoints_;
   std::FILE* log_ = nullptr;
   std::FILE* timeseries_ = nullptr;
