@@ -21,7 +21,7 @@ def pareto(points):
 
 
 def main():
-    rows = [r for r in csv.DictReader(open(sys.argv[1])) if r.get("scene")]
+    rows = [r for r in csv.DictReader(open(sys.argv[1])) if r.get("scene") not in (None, "", "scene")]
     out = sys.argv[2]
     os.makedirs(out, exist_ok=True)
     for key in sorted({(r["backend"], r["scene"]) for r in rows}):
