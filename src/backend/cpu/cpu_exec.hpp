@@ -16,12 +16,12 @@ struct CpuExec {
   // Each thread calls its own copy of the functor: the compiler then knows
   // that no store through the functor's output pointers changes its fields,
   // so they stay in registers instead of being reloaded around every store.
-  // Each thread calls its own copy of the functor: the compiler then knows
-  // that no store through the functor's output pointers changes its fields,
-  // so they stay in registers instead of being reloaded around every store.
+  // Small loops run on the calling thread: waking a team costs more than
+  // they do, and far more when the cores are shared.
+  static constexpr Index kSerialBelow = 4096;
   template <class F>
   static void parallel_for(Index n, const F& f) {
-#pragma omp parallel
+#pragma omp parallel if (n >= kSerialBelow)
     {
       const F local = f;
 #pragma omp for schedule(static)
