@@ -1,17 +1,27 @@
 #!/usr/bin/env bash
-# Weak scaling of a settled frictional bed: PER_GPU particles per rank, the
-# bed stacked along z (the slab axis), 1 to NMAX ranks, one GPU each.
-#   bench/scaling_bed.sh BUILD_DIR PER_GPU NMAX STEPS OUTDIR
+# Weak and strong scaling of a frictional bed of touching spheres (a lattice
+# that starts settling at once), stacked along z, the slab axis; one GPU per
+# rank, 1, 2, 4 and 8 ranks up to NMAX.
+#   bench/scaling_bed.sh BUILD_DIR weak|strong N NMAX STEPS OUTDIR
+#   weak:   N particles per rank; the bed grows along z with the ranks.
+#   strong: N particles in all, a bed twice as tall as wide, on every rank count.
 set -euo pipefail
-build=$1 per=$2 nmax=$3 steps=$4 out=$5
+build=$1 mode=$2 count=$3 nmax=$4 steps=$5 out=$6
 mkdir -p "$out"
-side=$(python3 -c "print(round(($per) ** (1/3)))")
-for n in $(seq 1 "$nmax"); do
-  [[ $n == 1 || $n == 2 || $n == 4 || $n == 8 ]] || continue
-  layers=$(( side * n ))
-  top=$(python3 -c "print(0.001 + $layers * 0.002 + 0.001)")
-  edge=$(python3 -c "print(0.001 + $side * 0.002 + 0.001)")
-  cat > "$out/bed_$n.yaml" <<YAML
+py() { python3 -c "print($1)"; }
+for n in 1 2 4 8; do
+  ((n <= nmax)) || continue
+  if [[ $mode == weak ]]; then
+    side=$(py "round(($count) ** (1/3))")
+    layers=$((side * n))
+  else
+    side=$(py "round(($count / 2) ** (1/3))")
+    layers=$(py "round($count / $side**2)")
+  fi
+  top=$(py "0.001 + $layers * 0.002 + 0.001")
+  edge=$(py "0.001 + $side * 0.002 + 0.001")
+  inner=$(py "$edge - 0.0011")
+  cat > "$out/bed_${mode}_$n.yaml" <<YAML
 domain: {min: [-0.001, -0.001, -0.001], max: [$edge, $edge, $top]}
 gravity: [0, 0, -9.81]
 contact_model: linear
@@ -25,12 +35,13 @@ walls:
   - box: {min: [0, 0, 0], max: [$edge, $edge, $top]}
     material: glass
 particles:
-  - lattice: {material: glass, radius: 0.001, min: [0.0011, 0.0011, 0.0011], max: [$(python3 -c "print($edge - 0.0011)"), $(python3 -c "print($edge - 0.0011)"), $(python3 -c "print($top - 0.0011)")], spacing: 0.002}
+  - lattice: {material: glass, radius: 0.001, min: [0.0011, 0.0011, 0.0011], max: [$inner, $inner, $(py "$top - 0.0011")], spacing: 0.002}
 time_step: {fraction_of_contact_time: 0.2}
 duration: 1
-output: {interval: 0, directory: $out/run_$n}
+output: {interval: 0, directory: $out/run_${mode}_$n}
 decomposition: {method: slabs, axis: z}
 YAML
-  mpirun --allow-run-as-root -np "$n" --bind-to none "$build/src/grainstorm" run "$out/bed_$n.yaml" --backend cuda \
-    --steps "$steps" 2>/dev/null | grep -E "particles,|^done|time per phase|decomposition:" | sed "s/^/[$n GPU] /"
+  mpirun --allow-run-as-root -np "$n" --bind-to none "$build/src/grainstorm" run "$out/bed_${mode}_$n.yaml" \
+    --backend cuda --steps "$steps" 2>&1 | grep -E "particles,|^done|time per phase|decomposition:|rror" |
+    sed "s/^/[$mode $count, $n GPU] /"
 done

@@ -51,13 +51,29 @@ std::vector<int> DomainExchange::all_other_ranks() const {
   return r;
 }
 
-// Packs lists[p] for peers[p], swaps with every peer, unpacks what arrived.
+ParticleRouter& DomainExchange::router(const ParticleStore& s, const std::vector<int>& peers) {
+  if (!router_ || router_backend_ != s.position.backend()) {
+    router_ = make_particle_router(s.position.backend());
+    router_backend_ = s.position.backend();
+    list_ = DeviceArray<Index>(router_backend_);
+    map_current_ = false;
+  }
+  if (!map_current_) router_->set_map(decomposition_->owner_map());
+  map_current_ = true;
+  router_->set_peers(rank(), ranks(), peers);
+  return *router_;
+}
+
+// Packs the particles the router tagged for each peer, swaps with every
+// peer, unpacks what arrived.
 std::vector<ParticleRecords> DomainExchange::trade(StepKernels& k, const ParticleStore& s,
-                                                   const std::vector<int>& peers,
-                                                   const std::vector<std::vector<Index>>& lists, bool with_history) {
+                                                   const std::vector<int>& peers, bool with_history) {
   std::vector<Bytes> send(peers.size()), recv;
-  for (std::size_t p = 0; p < peers.size(); ++p)
-    if (!lists[p].empty()) encode_records(k.export_particles(s, lists[p], with_history), send[p]);
+  for (std::size_t p = 0; p < peers.size(); ++p) {
+    router_->select(int(p), list_);
+    sent_ += list_.size();
+    if (list_.size() > 0) encode_records(k.export_particles(s, list_, with_history), send[p]);
+  }
   transport_.exchange(peers, send, recv);
   std::vector<ParticleRecords> arrived;
   for (const Bytes& b : recv) arrived.push_back(decode_records(b));
@@ -66,24 +82,15 @@ std::vector<ParticleRecords> DomainExchange::trade(StepKernels& k, const Particl
 
 void DomainExchange::send_to_owners(ParticleStore& s, StepKernels& k, const std::vector<int>& peers) {
   s.drop_ghosts();
-  const std::vector<Vec3d> x = owned_positions(s);
-  std::vector<Index> keep;
-  keep.reserve(x.size());
-  std::vector<std::vector<Index>> leave(peers.size());
-  for (Index i = 0; i < s.n_owned; ++i) {
-    const int owner = decomposition_->owner(x[std::size_t(i)]);
-    if (owner == rank()) {
-      keep.push_back(i);
-      continue;
-    }
-    const auto it = std::lower_bound(peers.begin(), peers.end(), owner);
-    if (it == peers.end() || *it != owner)
-      throw std::runtime_error("a particle moved from rank " + std::to_string(rank()) + " to rank " +
-                               std::to_string(owner) + ", which is not a neighbour (it moved too far in one step)");
-    leave[std::size_t(it - peers.begin())].push_back(i);
-  }
-  std::vector<ParticleRecords> arrived = trade(k, s, peers, leave, true);
-  if (keep.size() != std::size_t(s.n_owned)) k.keep_owned(s, keep);
+  router(s, peers).tag_owners(s);
+  sent_ = 0;
+  std::vector<ParticleRecords> arrived = trade(k, s, peers, true);
+  router_->select(ParticleRouter::kStay, list_);
+  if (sent_ + list_.size() != std::size_t(s.n_owned))
+    throw std::runtime_error(std::to_string(std::size_t(s.n_owned) - sent_ - list_.size()) +
+                             " particle(s) moved from rank " + std::to_string(rank()) +
+                             " into the region of a rank that is not its neighbour (they moved too far in one step)");
+  if (list_.size() != std::size_t(s.n_owned)) k.keep_owned(s, list_);
   for (const ParticleRecords& r : arrived)
     if (r.size() > 0) k.append(s, r, false);
 }
@@ -96,19 +103,10 @@ void DomainExchange::migrate(ParticleStore& s, StepKernels& k) {
 void DomainExchange::refresh_ghosts(ParticleStore& s, StepKernels& k) {
   Stopwatch watch(seconds_);
   s.drop_ghosts();
-  const std::vector<Vec3d> x = owned_positions(s);
-  std::vector<std::vector<Index>> lists(peers_.size());
-  std::vector<int> near;
-  for (Index i = 0; i < s.n_owned; ++i) {
-    near.clear();
-    decomposition_->ranks_near(x[std::size_t(i)], halo_, rank(), near);
-    for (int r : near) {
-      const auto it = std::lower_bound(peers_.begin(), peers_.end(), r);
-      if (it == peers_.end() || *it != r) throw std::logic_error("ghost for a rank that is not a neighbour");
-      lists[std::size_t(it - peers_.begin())].push_back(i);
-    }
-  }
-  for (const ParticleRecords& r : trade(k, s, peers_, lists, false))
+  // Decomposition::neighbours() holds every rank within the halo of an owned
+  // particle, so no ghost is tagged for a rank that is not a peer.
+  router(s, peers_).tag_ghosts(s, halo_);
+  for (const ParticleRecords& r : trade(k, s, peers_, false))
     if (r.size() > 0) k.append(s, r, true);
 }
 
@@ -131,6 +129,7 @@ bool DomainExchange::rebalance(ParticleStore& s, StepKernels& k) {
     transport_.sum(h);
     metis->rebalance(h);
   }
+  map_current_ = false;
   peers_ = decomposition_->neighbours(rank());
   send_to_owners(s, k, all_other_ranks());
   return true;

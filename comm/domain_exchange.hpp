@@ -8,6 +8,7 @@
 
 #include "comm/transport.hpp"
 #include "decomposition/decomposition.hpp"
+#include "engine/particle_router.hpp"
 #include "engine/rank_exchange.hpp"
 #include "scene/scene.hpp"
 
@@ -35,8 +36,10 @@ class DomainExchange final : public RankExchange {
 
  private:
   void send_to_owners(ParticleStore& s, StepKernels& k, const std::vector<int>& peers);
+  // The router, on the store's backend, with the current map and these peers.
+  ParticleRouter& router(const ParticleStore& s, const std::vector<int>& peers);
   std::vector<ParticleRecords> trade(StepKernels& k, const ParticleStore& s, const std::vector<int>& peers,
-                                     const std::vector<std::vector<Index>>& lists, bool with_history);
+                                     bool with_history);
   std::vector<int> all_other_ranks() const;
 
   Transport& transport_;
@@ -45,6 +48,11 @@ class DomainExchange final : public RankExchange {
   DecompositionSpec spec_;
   std::vector<int> peers_;  // neighbours of this rank, ascending
   double seconds_ = 0;
+  std::unique_ptr<ParticleRouter> router_;
+  Backend router_backend_ = Backend::cpu;
+  bool map_current_ = false;     // the router holds decomposition_'s current map
+  DeviceArray<Index> list_;      // store indices the router selected
+  std::size_t sent_ = 0;         // particles trade() sent
 };
 
 // Partitions particles at `positions` (all of the run's) over the transport's

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/coarse_coord.hpp"
+
 namespace gs {
 namespace {
 
@@ -78,12 +80,7 @@ CoarseGrid CoarseGrid::make(const Vec3d& lo, const Vec3d& hi, double min_edge, s
   return g;
 }
 
-int CoarseGrid::coord(int axis, double p) const {
-  const double t = (p - lo[axis]) / edge[axis];
-  if (!(t >= 0.0)) return 0;  // also catches NaN
-  if (t >= double(dims[axis])) return dims[axis] - 1;
-  return int(t);
-}
+int CoarseGrid::coord(int axis, double p) const { return coarse_coord(p, lo[axis], edge[axis], dims[axis]); }
 
 std::array<int, 3> CoarseGrid::coords(const Vec3d& x) const {
   return {coord(0, x.x), coord(1, x.y), coord(2, x.z)};
@@ -115,6 +112,17 @@ void CoarseGrid::cells_near(const Vec3d& x, double h, std::array<int, 3>& first,
     first[a] = coord(a, p - h);
     last[a] = coord(a, p + h);
   }
+}
+
+OwnerMapShape CoarseGrid::owner_map_shape(const std::array<std::int64_t, 3>& stride) const {
+  OwnerMapShape s;
+  for (int a = 0; a < 3; ++a) {
+    s.lo[a] = lo[a];
+    s.edge[a] = edge[a];
+    s.dims[a] = dims[a];
+    s.stride[a] = stride[a];
+  }
+  return s;
 }
 
 Histogram cell_histogram(const CoarseGrid& grid, const std::vector<Vec3d>& positions) {

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/owner_map.hpp"
 #include "core/vec3.hpp"
 
 namespace gs {
@@ -54,6 +55,9 @@ struct CoarseGrid {
   // the closed cube of half-width h around x falls into: never misses one
   // (see the .cpp for why rounding cannot shrink the range).
   void cells_near(const Vec3d& x, double h, std::array<int, 3>& first, std::array<int, 3>& last) const;
+
+  // The grid as an owner table's shape, with the given table strides.
+  OwnerMapShape owner_map_shape(const std::array<std::int64_t, 3>& stride) const;
 };
 
 // Particles per coarse cell, indexed by CoarseGrid::index (for the METIS decomposition).

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "coarse_grid.hpp"
+#include "core/owner_map.hpp"
 #include "core/vec3.hpp"
 
 namespace gs {
@@ -49,6 +50,10 @@ class Decomposition {
 
   // One line for the run log, e.g. "slabs along z: 4 ranks, imbalance 1.02".
   virtual std::string describe() const = 0;
+
+  // owner() and ranks_near() as a table the backends' routing kernels read
+  // (they classify particles on the device, so positions never go to the host).
+  virtual OwnerMapHost owner_map() const = 0;
 
   // The coarse grid ownership is defined on; callers histogram their local
   // particles on it (cell_histogram / layer_histogram) before an all-reduce.

@@ -112,6 +112,11 @@ void MetisDecomposition::ranks_near(const Vec3d& x, double halo_width, int self,
       }
 }
 
+OwnerMapHost MetisDecomposition::owner_map() const {
+  const std::int64_t nx = grid_.dims[0], ny = grid_.dims[1];
+  return {grid_.owner_map_shape({1, nx, nx * ny}), cell_owner_};
+}
+
 std::vector<int> MetisDecomposition::neighbours(int rank) const {
   if (rank < 0 || rank >= n_ranks_) throw std::out_of_range("MetisDecomposition::neighbours: rank out of range");
   return neighbours_[std::size_t(rank)];

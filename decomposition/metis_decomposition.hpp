@@ -49,6 +49,7 @@ class MetisDecomposition final : public Decomposition {
   std::vector<int> neighbours(int rank) const override;
   double imbalance() const override { return imbalance_; }
   std::string describe() const override;
+  OwnerMapHost owner_map() const override;
   const CoarseGrid& grid() const override { return grid_; }
 
  private:

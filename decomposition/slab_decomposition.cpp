@@ -114,6 +114,13 @@ void SlabDecomposition::ranks_near(const Vec3d& x, double halo_width, int self, 
     if (r != self) out.push_back(r);
 }
 
+// One entry per layer along the axis: the other axes do not change the owner.
+OwnerMapHost SlabDecomposition::owner_map() const {
+  std::array<std::int64_t, 3> stride{0, 0, 0};
+  stride[std::size_t(axis_)] = 1;
+  return {grid_.owner_map_shape(stride), layer_rank_};
+}
+
 std::vector<int> SlabDecomposition::neighbours(int rank) const {
   if (rank < 0 || rank >= n_ranks_) throw std::out_of_range("SlabDecomposition::neighbours: rank out of range");
   std::vector<int> out;

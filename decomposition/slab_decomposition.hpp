@@ -54,6 +54,7 @@ class SlabDecomposition final : public Decomposition {
   std::vector<int> neighbours(int rank) const override;
   double imbalance() const override { return imbalance_; }
   std::string describe() const override;
+  OwnerMapHost owner_map() const override;
   const CoarseGrid& grid() const override { return grid_; }
 
  private:

@@ -52,13 +52,14 @@ class StepKernels {
   virtual std::vector<MeshLoad> particle_mesh_loads(const ParticleStore& s) const = 0;
   virtual void set_history(const ParticleStore& s, const HostHistory& h) = 0;
 
-  // Data movement between ranks (comm/). Host copies of particles `which`
-  // (store indices), with their contact history when `with_history`.
-  virtual ParticleRecords export_particles(const ParticleStore& s, const std::vector<Index>& which,
+  // Data movement between ranks (comm/), with the store indices in backend
+  // memory (ParticleRouter selects them there). Host copies of particles
+  // `which`, with their contact history when `with_history`.
+  virtual ParticleRecords export_particles(const ParticleStore& s, const DeviceArray<Index>& which,
                                            bool with_history) const = 0;
   // Keeps the owned particles `keep`, in that order, as [0, keep.size());
   // drops every ghost.
-  virtual void keep_owned(ParticleStore& s, const std::vector<Index>& keep) = 0;
+  virtual void keep_owned(ParticleStore& s, const DeviceArray<Index>& keep) = 0;
   // Appends particles after the current ones: as owned particles with their
   // history (only while there are no ghosts), or as ghosts.
   virtual void append(ParticleStore& s, const ParticleRecords& r, bool as_ghosts) = 0;

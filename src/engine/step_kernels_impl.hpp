@@ -103,9 +103,9 @@ class StepKernelsImpl final : public StepKernels {
     h.resize(std::size_t(s.n_owned) * std::size_t(meshes_.n_meshes));
     return h;
   }
-  ParticleRecords export_particles(const ParticleStore& s, const std::vector<Index>& which,
+  ParticleRecords export_particles(const ParticleStore& s, const DeviceArray<Index>& which,
                                    bool with_history) const override;
-  void keep_owned(ParticleStore& s, const std::vector<Index>& keep) override;
+  void keep_owned(ParticleStore& s, const DeviceArray<Index>& keep) override;
   void append(ParticleStore& s, const ParticleRecords& r, bool as_ghosts) override;
   void set_forces(const ParticleStore& s, const std::vector<Vec3d>& force, const std::vector<Vec3d>& torque) override {
     forces_.force.from_host(narrowed(force, s.n_owned));
@@ -117,8 +117,7 @@ class StepKernelsImpl final : public StepKernels {
 
   std::size_t bytes() const override {
     return forces_.force.bytes() + forces_.torque.bytes() + history_.partner.bytes() + history_.tangential.bytes() +
-           history_.rolling.bytes() + cells_.bytes() + pairs_.bytes() + walls_.bytes() + staging_.bytes() +
-           staging_index_.bytes();
+           history_.rolling.bytes() + cells_.bytes() + pairs_.bytes() + walls_.bytes() + staging_.bytes();
   }
 
  private:
@@ -157,7 +156,6 @@ class StepKernelsImpl final : public StepKernels {
   ContactHistory<Real> history_;
   // Reused staging for data movement (reorder, migration, ghosts).
   mutable DeviceArray<unsigned char> staging_{Exec::backend};
-  mutable DeviceArray<Index> staging_index_{Exec::backend};
 };
 
 }  // namespace gs

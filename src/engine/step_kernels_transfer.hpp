@@ -83,11 +83,9 @@ void append_from_host(DeviceArray<T>& a, const std::vector<T>& h, std::size_t fi
 
 template <class Exec, class Real, ContactModel Model, unsigned Effects>
 ParticleRecords StepKernelsImpl<Exec, Real, Model, Effects>::export_particles(const ParticleStore& s,
-                                                                              const std::vector<Index>& which,
+                                                                              const DeviceArray<Index>& w,
                                                                               bool with_history) const {
   ParticleRecords r;
-  DeviceArray<Index>& w = staging_index_;
-  w.from_host(which);
   r.id = gathered_to_host<Exec>(s.id, w, staging_);
   r.material = gathered_to_host<Exec>(s.material, w, staging_);
   r.marker = gathered_to_host<Exec>(s.marker, w, staging_);
@@ -100,7 +98,7 @@ ParticleRecords StepKernelsImpl<Exec, Real, Model, Effects>::export_particles(co
   r.orientation = gathered_to_host<Exec>(s.orientation, w, staging_);
   if (!with_history || !kHistory) return r;
 
-  const std::size_t m = which.size(), slots = std::size_t(history_.slots);
+  const std::size_t m = w.size(), slots = std::size_t(history_.slots);
   HostHistory& h = r.history;
   h.slots = history_.slots;
   const std::vector<ParticleId> partner =
@@ -120,10 +118,8 @@ ParticleRecords StepKernelsImpl<Exec, Real, Model, Effects>::export_particles(co
 }
 
 template <class Exec, class Real, ContactModel Model, unsigned Effects>
-void StepKernelsImpl<Exec, Real, Model, Effects>::keep_owned(ParticleStore& s, const std::vector<Index>& keep) {
-  DeviceArray<Index>& order = staging_index_;
-  order.from_host(keep);
-  const Index n = Index(keep.size());
+void StepKernelsImpl<Exec, Real, Model, Effects>::keep_owned(ParticleStore& s, const DeviceArray<Index>& order) {
+  const Index n = Index(order.size());
   DeviceArray<unsigned char>& tmp = staging_;
   gather_in_place<Exec>(s.id, order.data(), n, tmp);
   gather_in_place<Exec>(s.material, order.data(), n, tmp);

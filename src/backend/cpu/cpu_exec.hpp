@@ -1,6 +1,7 @@
 #pragma once
 // CPU execution policy: OpenMP over particles, an O(N) radix sort for keys.
 #include "backend/backend.hpp"
+#include "backend/device_array.hpp"
 #include "core/history_layout.hpp"
 #include "neighbor/cell_list.hpp"
 
@@ -27,6 +28,17 @@ struct CpuExec {
 #pragma omp for schedule(static)
       for (Index i = 0; i < n; ++i) local(i);
     }
+  }
+
+  // Writes the indices i in [0, n) with pred(i), ascending, to out; returns
+  // how many. One pass on the calling thread: it runs on a rank's owned
+  // particles once or twice a step, next to a force loop that costs far more.
+  template <class P>
+  static Index select(Index n, const P& pred, Index* out, DeviceArray<unsigned char>& /*scratch*/) {
+    Index m = 0;
+    for (Index i = 0; i < n; ++i)
+      if (pred(i)) out[m++] = i;
+    return m;
   }
 
   // Sorts c.keys[0,n) ascending, carrying c.sorted along.

@@ -1,8 +1,11 @@
 #pragma once
 // CUDA execution policy: one thread per particle, CUB radix sort for keys.
 #include <cub/device/device_radix_sort.cuh>
+#include <cub/device/device_select.cuh>
+#include <thrust/iterator/counting_iterator.h>
 
 #include "backend/check.hpp"
+#include "backend/device_array.hpp"
 #include "core/history_layout.hpp"
 #include "neighbor/cell_list.hpp"
 
@@ -39,6 +42,23 @@ struct CudaExec {
         cub::DeviceRadixSort::SortPairs(c.sort_scratch.data(), scratch_bytes, keys, values, n, 0, c.key_bits));
     if (keys.Current() != c.keys.data()) c.keys.swap(c.keys_alt);
     if (values.Current() != c.sorted.data()) c.sorted.swap(c.sorted_alt);
+  }
+
+  // Writes the indices i in [0, n) with pred(i), ascending, to out; returns
+  // how many (CUB's stable selection; the count comes back to the host).
+  template <class P>
+  static Index select(Index n, const P& pred, Index* out, DeviceArray<unsigned char>& scratch) {
+    if (n <= 0) return 0;
+    const thrust::counting_iterator<Index> first(0);
+    std::size_t bytes = 0;
+    GS_CUDA_CHECK(cub::DeviceSelect::If(nullptr, bytes, first, out, static_cast<Index*>(nullptr), n, pred));
+    constexpr std::size_t kCountBytes = 256;  // the count first, CUB's storage aligned after it
+    scratch.resize(kCountBytes + bytes);
+    Index* count = reinterpret_cast<Index*>(scratch.data());
+    GS_CUDA_CHECK(cub::DeviceSelect::If(scratch.data() + kCountBytes, bytes, first, out, count, n, pred));
+    Index m = 0;
+    GS_CUDA_CHECK(cudaMemcpy(&m, count, sizeof(Index), cudaMemcpyDeviceToHost));
+    return m;
   }
 
   static void synchronize() { GS_CUDA_CHECK(cudaDeviceSynchronize()); }
