@@ -2,7 +2,7 @@
 # One session on a GPU machine: build with CUDA, run the whole test suite on
 # both backends, compare CPU and GPU runs of the demo, then the benchmarks.
 # Results go to $OUT (default ./device_out). Usage, from the repository root:
-#   bench/device_session.sh [all|tests|bench]
+#   bench/device_session.sh [all|tests|bench|scaling][,...]
 # METIS and yaml-cpp may be carried as unpacked Debian packages in carry/root
 # (see docs/PERFORMANCE.md) when the machine lacks them.
 set -uo pipefail
@@ -28,8 +28,10 @@ cmake -S . -B build-gpu -DCMAKE_BUILD_TYPE=Release -DGS_ENABLE_CUDA=ON "${extra[
   cmake --build build-gpu -j 16 >> "$log" 2>&1 || { echo "BUILD FAILED" >> "$log"; tail -50 "$log"; exit 1; }
 echo "build ok" >> "$log"
 
-if [[ $what == all || $what == tests ]]; then
-  (cd build-gpu && GS_TEST_BACKENDS=cpu,cuda OMP_NUM_THREADS=4 ctest -j 4 --timeout 300 --output-on-failure \
+wants() { [[ ,$what, == *,all,* || ,$what, == *,$1,* ]]; }
+
+if wants tests; then
+  (cd build-gpu && GS_TEST_BACKENDS=cpu,cuda OMP_NUM_THREADS=4 timeout ${TESTS_LIMIT:-400} ctest -j 4 --timeout 300 --output-on-failure ${TESTS_REGEX:+-R "$TESTS_REGEX"} \
      > "$OUT/ctest_gpu.log" 2>&1)
   tail -25 "$OUT/ctest_gpu.log" >> "$log"
   # CPU against GPU on the demo scene, and 2 ranks sharing the GPU against 1.
@@ -43,7 +45,7 @@ if [[ $what == all || $what == tests ]]; then
   } >> "$log" 2>&1
 fi
 
-if [[ $what == all || $what == bench ]]; then
+if wants bench; then
   b=build-gpu/bench/settle_bench
   {
     for n in 100000 1000000 4000000 16000000; do $b --backend cuda --n $n --steps 200; done
@@ -54,5 +56,14 @@ if [[ $what == all || $what == bench ]]; then
     OMP_NUM_THREADS=16 $b --backend cpu --n 1000000 --steps 50
   } > "$OUT/bench.log" 2>&1
   cat "$OUT/bench.log" >> "$log"
+fi
+if wants scaling; then
+  gpus=$(nvidia-smi -L | wc -l)
+  {
+    timeout 200 bench/scaling_bed.sh build-gpu weak 2000000 "$gpus" 300 /tmp/scaling
+    timeout 200 bench/scaling_bed.sh build-gpu weak 16000000 "$gpus" 100 /tmp/scaling
+    timeout 200 bench/scaling_bed.sh build-gpu strong 32000000 "$gpus" 100 /tmp/scaling
+  } > "$OUT/scaling.log" 2>&1
+  cat "$OUT/scaling.log" >> "$log"
 fi
 cat "$log"
