@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <climits>
+#include <cstring>
 #include <stdexcept>
 
-#include "comm/records_codec.hpp"
+#include "backend/memory.hpp"
 #include "decomposition/metis_decomposition.hpp"
 #include "decomposition/slab_decomposition.hpp"
 
@@ -56,6 +57,7 @@ ParticleRouter& DomainExchange::router(const ParticleStore& s, const std::vector
     router_ = make_particle_router(s.position.backend());
     router_backend_ = s.position.backend();
     list_ = DeviceArray<Index>(router_backend_);
+    message_ = DeviceArray<unsigned char>(router_backend_);
     map_current_ = false;
   }
   if (!map_current_) router_->set_map(decomposition_->owner_map());
@@ -64,35 +66,55 @@ ParticleRouter& DomainExchange::router(const ParticleStore& s, const std::vector
   return *router_;
 }
 
-// Packs the particles the router tagged for each peer, swaps with every
-// peer, unpacks what arrived.
-std::vector<ParticleRecords> DomainExchange::trade(StepKernels& k, const ParticleStore& s,
-                                                   const std::vector<int>& peers, bool with_history) {
+// Packs the particles the router tagged for each peer into one message per
+// peer (the header, then the payload copied out of backend memory in one
+// piece) and swaps messages with every peer.
+std::vector<Bytes> DomainExchange::trade(StepKernels& k, const ParticleStore& s, const std::vector<int>& peers,
+                                         bool with_history) {
   std::vector<Bytes> send(peers.size()), recv;
   for (std::size_t p = 0; p < peers.size(); ++p) {
     router_->select(int(p), list_);
     sent_ += list_.size();
-    if (list_.size() > 0) encode_records(k.export_particles(s, list_, with_history), send[p]);
+    if (list_.size() == 0) continue;
+    const MessageHeader h = k.pack(s, list_, with_history, message_);
+    Bytes& b = send[p];
+    b.resize(sizeof(h) + message_.size());
+    std::memcpy(b.data(), &h, sizeof(h));
+    backend_copy_to_host(message_.backend(), b.data() + sizeof(h), message_.data(), message_.size());
   }
   transport_.exchange(peers, send, recv);
-  std::vector<ParticleRecords> arrived;
-  for (const Bytes& b : recv) arrived.push_back(decode_records(b));
-  return arrived;
+  return recv;
+}
+
+// Appends the particles of each message, in peer order.
+void DomainExchange::unpack(StepKernels& k, ParticleStore& s, const std::vector<Bytes>& messages, bool as_ghosts) {
+  for (const Bytes& b : messages) {
+    if (b.empty()) continue;
+    MessageHeader h;
+    if (b.size() < sizeof(h)) throw std::runtime_error("a particle message from another rank is truncated");
+    std::memcpy(&h, b.data(), sizeof(h));
+    const std::size_t payload = b.size() - sizeof(h);
+    if (h.check != kMessageCheck || h.slots < 0 || h.slots > kMaxContactSlots || h.count > payload ||
+        MessageLayout(h).bytes != payload)
+      throw std::runtime_error("a particle message from another rank is corrupt");
+    message_.resize(payload);
+    backend_copy_from_host(message_.backend(), message_.data(), b.data() + sizeof(h), payload);
+    k.unpack(s, h, message_.data(), as_ghosts);
+  }
 }
 
 void DomainExchange::send_to_owners(ParticleStore& s, StepKernels& k, const std::vector<int>& peers) {
   s.drop_ghosts();
   router(s, peers).tag_owners(s);
   sent_ = 0;
-  std::vector<ParticleRecords> arrived = trade(k, s, peers, true);
+  const std::vector<Bytes> arrived = trade(k, s, peers, true);
   router_->select(ParticleRouter::kStay, list_);
   if (sent_ + list_.size() != std::size_t(s.n_owned))
     throw std::runtime_error(std::to_string(std::size_t(s.n_owned) - sent_ - list_.size()) +
                              " particle(s) moved from rank " + std::to_string(rank()) +
                              " into the region of a rank that is not its neighbour (they moved too far in one step)");
   if (list_.size() != std::size_t(s.n_owned)) k.keep_owned(s, list_);
-  for (const ParticleRecords& r : arrived)
-    if (r.size() > 0) k.append(s, r, false);
+  unpack(k, s, arrived, false);
 }
 
 void DomainExchange::migrate(ParticleStore& s, StepKernels& k) {
@@ -106,8 +128,7 @@ void DomainExchange::refresh_ghosts(ParticleStore& s, StepKernels& k) {
   // Decomposition::neighbours() holds every rank within the halo of an owned
   // particle, so no ghost is tagged for a rank that is not a peer.
   router(s, peers_).tag_ghosts(s, halo_);
-  for (const ParticleRecords& r : trade(k, s, peers_, false))
-    if (r.size() > 0) k.append(s, r, true);
+  unpack(k, s, trade(k, s, peers_, false), true);
 }
 
 bool DomainExchange::rebalance(ParticleStore& s, StepKernels& k) {

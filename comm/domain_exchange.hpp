@@ -2,8 +2,8 @@
 // RankExchange over a Transport and a Decomposition: migration of particles
 // (with contact history) to their owners, ghost copies for the neighbours,
 // re-balancing, and agreement on faults. Particles are packed and unpacked by
-// the backend's kernels (StepKernels::export_particles / append); only the
-// choice of who goes where is made on the host, from owned positions.
+// the backend's kernels (StepKernels::pack / unpack), and who goes where is
+// decided by the backend's ParticleRouter; the host only moves the messages.
 #include <memory>
 
 #include "comm/transport.hpp"
@@ -38,8 +38,8 @@ class DomainExchange final : public RankExchange {
   void send_to_owners(ParticleStore& s, StepKernels& k, const std::vector<int>& peers);
   // The router, on the store's backend, with the current map and these peers.
   ParticleRouter& router(const ParticleStore& s, const std::vector<int>& peers);
-  std::vector<ParticleRecords> trade(StepKernels& k, const ParticleStore& s, const std::vector<int>& peers,
-                                     bool with_history);
+  std::vector<Bytes> trade(StepKernels& k, const ParticleStore& s, const std::vector<int>& peers, bool with_history);
+  void unpack(StepKernels& k, ParticleStore& s, const std::vector<Bytes>& messages, bool as_ghosts);
   std::vector<int> all_other_ranks() const;
 
   Transport& transport_;
@@ -52,6 +52,7 @@ class DomainExchange final : public RankExchange {
   Backend router_backend_ = Backend::cpu;
   bool map_current_ = false;     // the router holds decomposition_'s current map
   DeviceArray<Index> list_;      // store indices the router selected
+  DeviceArray<unsigned char> message_;  // one packed message
   std::size_t sent_ = 0;         // particles trade() sent
 };
 

@@ -12,6 +12,7 @@ namespace gs {
 template <class T>
 class DeviceArray {
  public:
+  using value_type = T;
   DeviceArray() = default;
   explicit DeviceArray(Backend b, std::size_t n = 0) : backend_(b) { resize(n); }
   ~DeviceArray() { release(); }

@@ -9,6 +9,7 @@
 #include "core/fault.hpp"
 #include "core/particle_records.hpp"
 #include "core/particle_store.hpp"
+#include "engine/particle_message.hpp"
 #include "integrate/velocity_verlet.hpp"
 #include "neighbor/cell_grid.hpp"
 #include "scene/scene.hpp"
@@ -53,15 +54,19 @@ class StepKernels {
   virtual void set_history(const ParticleStore& s, const HostHistory& h) = 0;
 
   // Data movement between ranks (comm/), with the store indices in backend
-  // memory (ParticleRouter selects them there). Host copies of particles
-  // `which`, with their contact history when `with_history`.
-  virtual ParticleRecords export_particles(const ParticleStore& s, const DeviceArray<Index>& which,
-                                           bool with_history) const = 0;
+  // memory (ParticleRouter selects them there). Packs particles `which`,
+  // with their contact history when `with_history`, into one message in
+  // backend memory (engine/particle_message.hpp); unpack() appends a
+  // message's particles after the current ones, as owned particles with
+  // their history (only while there are no ghosts) or as ghosts.
+  virtual MessageHeader pack(const ParticleStore& s, const DeviceArray<Index>& which, bool with_history,
+                             DeviceArray<unsigned char>& out) const = 0;
+  virtual void unpack(ParticleStore& s, const MessageHeader& h, const unsigned char* payload, bool as_ghosts) = 0;
   // Keeps the owned particles `keep`, in that order, as [0, keep.size());
   // drops every ghost.
   virtual void keep_owned(ParticleStore& s, const DeviceArray<Index>& keep) = 0;
-  // Appends particles after the current ones: as owned particles with their
-  // history (only while there are no ghosts), or as ghosts.
+  // Appends host particles after the current ones, as unpack() does (a
+  // restart's particles).
   virtual void append(ParticleStore& s, const ParticleRecords& r, bool as_ghosts) = 0;
   // Restores the forces and torques of owned particles (store order), as a
   // restart needs them for its first half kick.

@@ -103,8 +103,9 @@ class StepKernelsImpl final : public StepKernels {
     h.resize(std::size_t(s.n_owned) * std::size_t(meshes_.n_meshes));
     return h;
   }
-  ParticleRecords export_particles(const ParticleStore& s, const DeviceArray<Index>& which,
-                                   bool with_history) const override;
+  MessageHeader pack(const ParticleStore& s, const DeviceArray<Index>& which, bool with_history,
+                     DeviceArray<unsigned char>& out) const override;
+  void unpack(ParticleStore& s, const MessageHeader& h, const unsigned char* payload, bool as_ghosts) override;
   void keep_owned(ParticleStore& s, const DeviceArray<Index>& keep) override;
   void append(ParticleStore& s, const ParticleRecords& r, bool as_ghosts) override;
   void set_forces(const ParticleStore& s, const std::vector<Vec3d>& force, const std::vector<Vec3d>& torque) override {
@@ -121,6 +122,8 @@ class StepKernelsImpl final : public StepKernels {
   }
 
  private:
+  // What a message of `count` particles carries from this run.
+  MessageHeader message_header(Index count, bool with_history) const;
   HalfKick<Real> half_kick(ParticleStore& s, double half_dt, const Vec3d& gravity) {
     return HalfKick<Real>{s.velocity.data(), s.angular_velocity.data(), forces_.force.data(),
                           kTorque ? forces_.torque.data() : nullptr, s.mass.data(), s.inertia.data(), half_dt,

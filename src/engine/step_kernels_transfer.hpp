@@ -3,6 +3,10 @@
 // gather into packed buffers, compact, append. Pure data movement, run as
 // backend kernels; values are copied bit for bit.
 #include <stdexcept>
+#include <string>
+#include <type_traits>
+
+#include "engine/particle_message.hpp"
 
 namespace gs {
 
@@ -43,27 +47,30 @@ T* staging(DeviceArray<unsigned char>& scratch, std::size_t n) {
   return reinterpret_cast<T*>(scratch.data());
 }
 
+// Field `a` of particles `which`, packed at `to`.
 template <class Exec, class T>
-std::vector<T> gathered_to_host(const DeviceArray<T>& a, const DeviceArray<Index>& which,
-                                DeviceArray<unsigned char>& scratch) {
-  const Index m = Index(which.size());
-  T* packed = staging<T>(scratch, std::size_t(m));
-  Exec::parallel_for(m, Gather<T>{a.data(), packed, which.data()});
-  std::vector<T> h(static_cast<std::size_t>(m));
-  if (m > 0) backend_copy_to_host(Exec::backend, h.data(), packed, h.size() * sizeof(T));
-  return h;
+void gather_into(const DeviceArray<T>& a, const DeviceArray<Index>& which, unsigned char* to) {
+  Exec::parallel_for(Index(which.size()), Gather<T>{a.data(), reinterpret_cast<T*>(to), which.data()});
 }
 
 template <class Exec, class T>
-std::vector<T> gathered_history_to_host(const DeviceArray<T>& a, const DeviceArray<Index>& which, int slots,
-                                        const HistoryStrides& strides, DeviceArray<unsigned char>& scratch) {
+void gather_history_into(const DeviceArray<T>& a, const DeviceArray<Index>& which, int slots,
+                         const HistoryStrides& strides, unsigned char* to) {
   const Index m = Index(which.size());
-  const std::size_t n = std::size_t(slots) * std::size_t(m);
-  T* packed = staging<T>(scratch, n);
-  Exec::parallel_for(Index(slots) * m, GatherHistory<T>{a.data(), packed, which.data(), strides, m});
-  std::vector<T> h(n);
-  if (n > 0) backend_copy_to_host(Exec::backend, h.data(), packed, n * sizeof(T));
-  return h;
+  Exec::parallel_for(Index(slots) * m, GatherHistory<T>{a.data(), reinterpret_cast<T*>(to), which.data(), strides, m});
+}
+
+template <class T>
+struct CopyTo {
+  const T* from;
+  T* to;
+  GS_HD void operator()(Index k) const { to[k] = from[k]; }
+};
+
+// m packed values at `from` into a[first, first + m) (a already that long).
+template <class Exec, class T>
+void scatter_from(const unsigned char* from, DeviceArray<T>& a, std::size_t first, Index m) {
+  Exec::parallel_for(m, CopyTo<T>{reinterpret_cast<const T*>(from), a.data() + first});
 }
 
 template <class Exec, class T>
@@ -82,39 +89,83 @@ void append_from_host(DeviceArray<T>& a, const std::vector<T>& h, std::size_t fi
 }
 
 template <class Exec, class Real, ContactModel Model, unsigned Effects>
-ParticleRecords StepKernelsImpl<Exec, Real, Model, Effects>::export_particles(const ParticleStore& s,
-                                                                              const DeviceArray<Index>& w,
-                                                                              bool with_history) const {
-  ParticleRecords r;
-  r.id = gathered_to_host<Exec>(s.id, w, staging_);
-  r.material = gathered_to_host<Exec>(s.material, w, staging_);
-  r.marker = gathered_to_host<Exec>(s.marker, w, staging_);
-  r.radius = gathered_to_host<Exec>(s.radius, w, staging_);
-  r.mass = gathered_to_host<Exec>(s.mass, w, staging_);
-  r.inertia = gathered_to_host<Exec>(s.inertia, w, staging_);
-  r.position = gathered_to_host<Exec>(s.position, w, staging_);
-  r.velocity = gathered_to_host<Exec>(s.velocity, w, staging_);
-  r.angular_velocity = gathered_to_host<Exec>(s.angular_velocity, w, staging_);
-  r.orientation = gathered_to_host<Exec>(s.orientation, w, staging_);
-  if (!with_history || !kHistory) return r;
+MessageHeader StepKernelsImpl<Exec, Real, Model, Effects>::message_header(Index count, bool with_history) const {
+  MessageHeader h;
+  h.count = std::uint64_t(count);
+  h.check = kMessageCheck;
+  if (with_history && kHistory) {
+    h.slots = history_.slots;
+    h.spring_bytes = std::int32_t(sizeof(Vec3<Real>));
+    h.springs = ((Effects & kFriction) != 0 ? kTangentialSprings : 0u) |
+                ((Effects & kRollingResistance) != 0 ? kRollingSprings : 0u);
+  }
+  return h;
+}
 
-  const std::size_t m = w.size(), slots = std::size_t(history_.slots);
-  HostHistory& h = r.history;
-  h.slots = history_.slots;
-  const std::vector<ParticleId> partner =
-      gathered_history_to_host<Exec>(history_.partner, w, history_.slots, history_.strides, staging_);
-  h.partner.resize(m * slots);
-  for (std::size_t i = 0; i < m; ++i)
-    for (std::size_t k = 0; k < slots; ++k) h.partner[i * slots + k] = partner[k * m + i];
-  auto widen_springs = [&](const DeviceArray<Vec3<Real>>& a, std::vector<Vec3d>& out) {
-    const std::vector<Vec3<Real>> block = gathered_history_to_host<Exec>(a, w, history_.slots, history_.strides, staging_);
-    out.resize(m * slots);
-    for (std::size_t i = 0; i < m; ++i)
-      for (std::size_t k = 0; k < slots; ++k) out[i * slots + k] = Vec3d(block[k * m + i]);
+template <class Exec, class Real, ContactModel Model, unsigned Effects>
+MessageHeader StepKernelsImpl<Exec, Real, Model, Effects>::pack(const ParticleStore& s, const DeviceArray<Index>& w,
+                                                                bool with_history,
+                                                                DeviceArray<unsigned char>& out) const {
+  const MessageHeader h = message_header(Index(w.size()), with_history);
+  const MessageLayout at(h);
+  out.resize(at.bytes);
+  unsigned char* b = out.data();
+  gather_into<Exec>(s.id, w, b + at.id);
+  gather_into<Exec>(s.material, w, b + at.material);
+  gather_into<Exec>(s.marker, w, b + at.marker);
+  gather_into<Exec>(s.radius, w, b + at.radius);
+  gather_into<Exec>(s.mass, w, b + at.mass);
+  gather_into<Exec>(s.inertia, w, b + at.inertia);
+  gather_into<Exec>(s.position, w, b + at.position);
+  gather_into<Exec>(s.velocity, w, b + at.velocity);
+  gather_into<Exec>(s.angular_velocity, w, b + at.angular_velocity);
+  gather_into<Exec>(s.orientation, w, b + at.orientation);
+  if (h.slots == 0) return h;
+  gather_history_into<Exec>(history_.partner, w, h.slots, history_.strides, b + at.partner);
+  if (h.springs & kTangentialSprings)
+    gather_history_into<Exec>(history_.tangential, w, h.slots, history_.strides, b + at.tangential);
+  if (h.springs & kRollingSprings)
+    gather_history_into<Exec>(history_.rolling, w, h.slots, history_.strides, b + at.rolling);
+  return h;
+}
+
+template <class Exec, class Real, ContactModel Model, unsigned Effects>
+void StepKernelsImpl<Exec, Real, Model, Effects>::unpack(ParticleStore& s, const MessageHeader& h,
+                                                         const unsigned char* payload, bool as_ghosts) {
+  if (!as_ghosts && s.n_ghost != 0) throw std::logic_error("owned particles can only be appended before ghosts");
+  if (h.check != kMessageCheck) throw std::runtime_error("a particle message from another rank is corrupt");
+  // Owned arrivals must carry exactly this run's history; ghosts carry none.
+  const MessageHeader want = message_header(Index(h.count), !as_ghosts);
+  if (h.slots != want.slots || h.spring_bytes != want.spring_bytes || h.springs != want.springs)
+    throw std::runtime_error("arriving particles carry " + std::to_string(h.slots) + " history slots of " +
+                             std::to_string(h.spring_bytes) + "-byte springs; this run uses " +
+                             std::to_string(want.slots) + " of " + std::to_string(want.spring_bytes));
+  const MessageLayout at(h);
+  const std::size_t first = std::size_t(s.size());
+  const Index m = Index(h.count);
+  s.resize_arrays(first + std::size_t(m));
+  scatter_from<Exec>(payload + at.id, s.id, first, m);
+  scatter_from<Exec>(payload + at.material, s.material, first, m);
+  scatter_from<Exec>(payload + at.marker, s.marker, first, m);
+  scatter_from<Exec>(payload + at.radius, s.radius, first, m);
+  scatter_from<Exec>(payload + at.mass, s.mass, first, m);
+  scatter_from<Exec>(payload + at.inertia, s.inertia, first, m);
+  scatter_from<Exec>(payload + at.position, s.position, first, m);
+  scatter_from<Exec>(payload + at.velocity, s.velocity, first, m);
+  scatter_from<Exec>(payload + at.angular_velocity, s.angular_velocity, first, m);
+  scatter_from<Exec>(payload + at.orientation, s.orientation, first, m);
+  if (as_ghosts) s.n_ghost += m;
+  else s.n_owned += m;
+  reserve(s.size());
+  if (h.slots == 0) return;
+  auto scatter_history = [&](std::size_t offset, auto& a) {
+    using T = typename std::remove_reference_t<decltype(a)>::value_type;
+    Exec::parallel_for(Index(h.slots) * m, ScatterHistory<T>{reinterpret_cast<const T*>(payload + offset), a.data(),
+                                                            history_.strides, Index(first), m});
   };
-  if constexpr ((Effects & kFriction) != 0) widen_springs(history_.tangential, h.tangential);
-  if constexpr ((Effects & kRollingResistance) != 0) widen_springs(history_.rolling, h.rolling);
-  return r;
+  scatter_history(at.partner, history_.partner);
+  if (h.springs & kTangentialSprings) scatter_history(at.tangential, history_.tangential);
+  if (h.springs & kRollingSprings) scatter_history(at.rolling, history_.rolling);
 }
 
 template <class Exec, class Real, ContactModel Model, unsigned Effects>
