@@ -23,6 +23,21 @@ class Stopwatch {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
+// The header of a message from rank `from`, checked before anything is
+// sized from it.
+MessageHeader read_header(const Bytes& b, int from) {
+  MessageHeader h;
+  const std::string bad = "a particle message from rank " + std::to_string(from) + " is corrupt";
+  if (b.size() < sizeof(h)) throw std::runtime_error(bad);
+  std::memcpy(&h, b.data(), sizeof(h));
+  const bool springs_ok = h.spring_bytes == 0 || h.spring_bytes == int(sizeof(Vec3<float>)) ||
+                          h.spring_bytes == int(sizeof(Vec3d));
+  if (h.check != kMessageCheck || h.slots < 0 || h.slots > kMaxContactSlots || !springs_ok || h.count == 0 ||
+      h.count > std::uint64_t(INT32_MAX))
+    throw std::runtime_error(bad);
+  return h;
+}
+
 std::vector<Vec3d> owned_positions(const ParticleStore& s) {
   std::vector<Vec3d> x = s.position.to_host();
   x.resize(std::size_t(s.n_owned));
@@ -57,7 +72,8 @@ ParticleRouter& DomainExchange::router(const ParticleStore& s, const std::vector
     router_ = make_particle_router(s.position.backend());
     router_backend_ = s.position.backend();
     list_ = DeviceArray<Index>(router_backend_);
-    message_ = DeviceArray<unsigned char>(router_backend_);
+    outbox_.clear();
+    inbox_.clear();
     map_current_ = false;
   }
   if (!map_current_) router_->set_map(decomposition_->owner_map());
@@ -67,47 +83,67 @@ ParticleRouter& DomainExchange::router(const ParticleStore& s, const std::vector
 }
 
 // Packs the particles the router tagged for each peer into one message per
-// peer (the header, then the payload copied out of backend memory in one
-// piece) and swaps messages with every peer.
-std::vector<Bytes> DomainExchange::trade(StepKernels& k, const ParticleStore& s, const std::vector<int>& peers,
-                                         bool with_history) {
-  std::vector<Bytes> send(peers.size()), recv;
-  for (std::size_t p = 0; p < peers.size(); ++p) {
+// peer and swaps messages with every peer: the headers over the transport,
+// the payloads over the device link when there is one (they never leave
+// backend memory), else through the host with their headers. Leaves what
+// arrived from peers[p] in inbox_[p]; returns the headers (count 0: none).
+std::vector<MessageHeader> DomainExchange::trade(StepKernels& k, const ParticleStore& s,
+                                                 const std::vector<int>& peers, bool with_history) {
+  const std::size_t n = peers.size();
+  while (outbox_.size() < n) {
+    outbox_.emplace_back(router_backend_);
+    inbox_.emplace_back(router_backend_);
+  }
+  std::vector<Bytes> send(n), recv;
+  for (std::size_t p = 0; p < n; ++p) {
     router_->select(int(p), list_);
     sent_ += list_.size();
     if (list_.size() == 0) continue;
-    const MessageHeader h = k.pack(s, list_, with_history, message_);
-    Bytes& b = send[p];
-    b.resize(sizeof(h) + message_.size());
-    std::memcpy(b.data(), &h, sizeof(h));
-    backend_copy_to_host(message_.backend(), b.data() + sizeof(h), message_.data(), message_.size());
+    const MessageHeader h = k.pack(s, list_, with_history, outbox_[p]);
+    const std::size_t payload = link_ ? 0 : outbox_[p].size();
+    send[p].resize(sizeof(h) + payload);
+    std::memcpy(send[p].data(), &h, sizeof(h));
+    if (payload > 0) backend_copy_to_host(router_backend_, send[p].data() + sizeof(h), outbox_[p].data(), payload);
   }
   transport_.exchange(peers, send, recv);
-  return recv;
+
+  std::vector<MessageHeader> headers(n);
+  std::vector<std::size_t> send_bytes(n, 0), recv_bytes(n, 0);
+  for (std::size_t p = 0; p < n; ++p) {
+    if (!send[p].empty()) send_bytes[p] = outbox_[p].size();
+    if (recv[p].empty()) continue;
+    headers[p] = read_header(recv[p], peers[p]);
+    recv_bytes[p] = MessageLayout(headers[p]).bytes;
+    inbox_[p].resize(recv_bytes[p]);
+    if (link_) continue;
+    if (recv[p].size() != sizeof(MessageHeader) + recv_bytes[p])
+      throw std::runtime_error("a particle message from rank " + std::to_string(peers[p]) + " is truncated");
+    backend_copy_from_host(router_backend_, inbox_[p].data(), recv[p].data() + sizeof(MessageHeader), recv_bytes[p]);
+  }
+  if (link_) {
+    std::vector<const unsigned char*> from(n);
+    std::vector<unsigned char*> to(n);
+    for (std::size_t p = 0; p < n; ++p) {
+      from[p] = outbox_[p].data();
+      to[p] = inbox_[p].data();
+    }
+    link_->exchange(peers, from, send_bytes, to, recv_bytes);
+  }
+  return headers;
 }
 
-// Appends the particles of each message, in peer order.
-void DomainExchange::unpack(StepKernels& k, ParticleStore& s, const std::vector<Bytes>& messages, bool as_ghosts) {
-  for (const Bytes& b : messages) {
-    if (b.empty()) continue;
-    MessageHeader h;
-    if (b.size() < sizeof(h)) throw std::runtime_error("a particle message from another rank is truncated");
-    std::memcpy(&h, b.data(), sizeof(h));
-    const std::size_t payload = b.size() - sizeof(h);
-    if (h.check != kMessageCheck || h.slots < 0 || h.slots > kMaxContactSlots || h.count > payload ||
-        MessageLayout(h).bytes != payload)
-      throw std::runtime_error("a particle message from another rank is corrupt");
-    message_.resize(payload);
-    backend_copy_from_host(message_.backend(), message_.data(), b.data() + sizeof(h), payload);
-    k.unpack(s, h, message_.data(), as_ghosts);
-  }
+// Appends the particles that arrived, in peer order.
+void DomainExchange::unpack(StepKernels& k, ParticleStore& s, const std::vector<MessageHeader>& headers,
+                            bool as_ghosts) {
+  for (std::size_t p = 0; p < headers.size(); ++p)
+    if (headers[p].count > 0) k.unpack(s, headers[p], inbox_[p].data(), as_ghosts);
 }
 
 void DomainExchange::send_to_owners(ParticleStore& s, StepKernels& k, const std::vector<int>& peers) {
   s.drop_ghosts();
   router(s, peers).tag_owners(s);
   sent_ = 0;
-  const std::vector<Bytes> arrived = trade(k, s, peers, true);
+  const std::vector<MessageHeader> arrived = trade(k, s, peers, true);
   router_->select(ParticleRouter::kStay, list_);
   if (sent_ + list_.size() != std::size_t(s.n_owned))
     throw std::runtime_error(std::to_string(std::size_t(s.n_owned) - sent_ - list_.size()) +

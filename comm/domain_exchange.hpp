@@ -6,6 +6,7 @@
 // decided by the backend's ParticleRouter; the host only moves the messages.
 #include <memory>
 
+#include "comm/device_link.hpp"
 #include "comm/transport.hpp"
 #include "decomposition/decomposition.hpp"
 #include "engine/particle_router.hpp"
@@ -29,17 +30,23 @@ class DomainExchange final : public RankExchange {
   std::string first_fault(const std::string& local) override;
   long long total(long long local) override;
   void sum(std::vector<double>& values) override { transport_.sum(values); }
-  std::string describe() const override { return decomposition_->describe(); }
+  std::string describe() const override {
+    return decomposition_->describe() + (link_ ? "; particles move over NCCL" : "; particles move through host buffers");
+  }
   double seconds() const override { return seconds_; }
 
   const Decomposition& decomposition() const { return *decomposition_; }
+  // Moves message payloads over `link` (GPU ranks) instead of through the host.
+  void use_device_link(std::unique_ptr<DeviceLink> link) { link_ = std::move(link); }
+  bool has_device_link() const { return link_ != nullptr; }
 
  private:
   void send_to_owners(ParticleStore& s, StepKernels& k, const std::vector<int>& peers);
   // The router, on the store's backend, with the current map and these peers.
   ParticleRouter& router(const ParticleStore& s, const std::vector<int>& peers);
-  std::vector<Bytes> trade(StepKernels& k, const ParticleStore& s, const std::vector<int>& peers, bool with_history);
-  void unpack(StepKernels& k, ParticleStore& s, const std::vector<Bytes>& messages, bool as_ghosts);
+  std::vector<MessageHeader> trade(StepKernels& k, const ParticleStore& s, const std::vector<int>& peers,
+                                   bool with_history);
+  void unpack(StepKernels& k, ParticleStore& s, const std::vector<MessageHeader>& headers, bool as_ghosts);
   std::vector<int> all_other_ranks() const;
 
   Transport& transport_;
@@ -52,7 +59,8 @@ class DomainExchange final : public RankExchange {
   Backend router_backend_ = Backend::cpu;
   bool map_current_ = false;     // the router holds decomposition_'s current map
   DeviceArray<Index> list_;      // store indices the router selected
-  DeviceArray<unsigned char> message_;  // one packed message
+  std::vector<DeviceArray<unsigned char>> outbox_, inbox_;  // one message per peer
+  std::unique_ptr<DeviceLink> link_;
   std::size_t sent_ = 0;         // particles trade() sent
 };
 

@@ -28,6 +28,9 @@ struct RunArgs {
   long long steps = -1;
   std::string out;
   std::string restart;
+  // How GPU ranks move particles: "device" (NCCL), "host" (MPI through host
+  // buffers), or "auto" (device when NCCL is built in and the backend is cuda).
+  std::string exchange = "auto";
 };
 
 RunArgs parse_run_args(const std::vector<std::string>& args) {
@@ -42,12 +45,17 @@ RunArgs parse_run_args(const std::vector<std::string>& args) {
     else if (a == "--steps") r.steps = std::stoll(value());
     else if (a == "--out") r.out = value();
     else if (a == "--restart") r.restart = value();
+    else if (a == "--exchange") r.exchange = value();
     else if (!a.empty() && a[0] == '-') throw std::invalid_argument("unknown option " + a);
     else if (r.scene.empty()) r.scene = a;
     else throw std::invalid_argument("more than one scene given: " + a);
   }
   if (r.scene.empty()) throw std::invalid_argument("no scene file given");
   if (r.steps < -1) throw std::invalid_argument("--steps must be >= 0");
+  if (r.exchange != "auto" && r.exchange != "device" && r.exchange != "host")
+    throw std::invalid_argument("--exchange must be auto, device or host, got " + r.exchange);
+  if (r.exchange == "device" && r.backend != Backend::cuda)
+    throw std::invalid_argument("--exchange device needs --backend cuda");
   return r;
 }
 
@@ -84,20 +92,33 @@ class Progress {
   Clock::time_point start_ = Clock::now(), last_ = start_;
 };
 
+// GPU ranks move particles over NCCL when asked to, or by default when it is
+// built in and every rank has a GPU of its own (NCCL refuses two ranks on one
+// device). Collective.
+std::shared_ptr<DomainExchange> with_link(std::shared_ptr<DomainExchange> exchange, const RunArgs& a,
+                                          Transport& transport, bool own_gpu) {
+  bool device = a.exchange == "device";
+  if (a.exchange == "auto" && a.backend == Backend::cuda && nccl_available())
+    device = transport.min(own_gpu ? 1 : 0) == 1;
+  if (exchange && device) exchange->use_device_link(make_nccl_link(transport));
+  return exchange;
+}
+
 std::unique_ptr<Simulation> start(const SceneSpec& scene, const RunArgs& a, Transport& transport,
-                                  std::uint64_t hash) {
+                                  std::uint64_t hash, bool own_gpu) {
   RunOptions options;
   options.backend = a.backend;
   if (a.restart.empty()) {
     std::shared_ptr<DomainExchange> exchange;
-    if (transport.size() > 1) exchange = make_domain_exchange(scene, transport);
+    if (transport.size() > 1) exchange = with_link(make_domain_exchange(scene, transport), a, transport, own_gpu);
     return std::make_unique<Simulation>(scene, options, exchange);
   }
   CheckpointExpectations expect;
   expect.scene_hash = hash;
   const RestartState r = restart_state(read_checkpoint(a.restart, expect));
   std::shared_ptr<DomainExchange> exchange;
-  if (transport.size() > 1) exchange = make_domain_exchange(scene, transport, r.particles.position);
+  if (transport.size() > 1)
+    exchange = with_link(make_domain_exchange(scene, transport, r.particles.position), a, transport, own_gpu);
   return std::make_unique<Simulation>(scene, options, exchange, r);
 }
 
@@ -108,9 +129,9 @@ int command_run(const std::vector<std::string>& args, Transport& transport) {
   const SceneSpec scene = load_scene(a.scene);
   const std::uint64_t hash = scene_hash(file_text(a.scene));
   const long long total = a.steps >= 0 ? a.steps : std::llround(scene.duration / scene.time_step);
-  if (a.backend == Backend::cuda) select_cuda_device(transport.local_rank());
+  const bool own_gpu = a.backend == Backend::cuda && select_cuda_device(transport.local_rank());
   install_stop_signals();
-  std::unique_ptr<Simulation> sim = start(scene, a, transport, hash);
+  std::unique_ptr<Simulation> sim = start(scene, a, transport, hash, own_gpu);
   RankExchange* exchange = sim->exchange();
   RunOutput out(scene, a.out.empty() ? scene.output.directory : a.out, transport, hash);
   const long long particles =

@@ -32,14 +32,16 @@ bool cuda_device_available() {
 #endif
 }
 
-void select_cuda_device(int local_rank) {
+bool select_cuda_device(int local_rank) {
 #ifdef GS_HAVE_CUDA
   int count = 0;
   GS_CUDA_CHECK(cudaGetDeviceCount(&count));
   if (count == 0) throw std::runtime_error("no CUDA device to bind local rank " + std::to_string(local_rank) + " to");
   GS_CUDA_CHECK(cudaSetDevice(local_rank % count));
+  return local_rank < count;
 #else
   (void)local_rank;
+  return false;
 #endif
 }
 

@@ -12,6 +12,8 @@ bool cuda_backend_built();     // compiled with the CUDA backend
 bool cuda_device_available();  // built with CUDA and a device is present
 Backend default_backend();     // cuda when a device is available, else cpu
 // Binds this process to GPU local_rank mod the device count (one rank per GPU).
-void select_cuda_device(int local_rank);
+// Binds this process to device local_rank mod the device count; returns
+// true when that leaves it a device of its own (local_rank < count).
+bool select_cuda_device(int local_rank);
 
 }  // namespace gs

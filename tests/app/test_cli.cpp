@@ -139,6 +139,11 @@ TEST_F(CliTest, TimeStepAboveStabilityLimit) {
 
 TEST_F(CliTest, UnknownOption) { expect_refused(kGoodScene, "--bogus", "--bogus"); }
 
+TEST_F(CliTest, BadExchangeOption) {
+  expect_refused(kGoodScene, "--exchange", "--exchange nccl2");
+  expect_refused(kGoodScene, "--exchange device needs --backend cuda", "--exchange device");
+}
+
 TEST_F(CliTest, VersionAndHelp) {
   const CliResult v = run_cli("--version");
   EXPECT_EQ(v.exit_code, 0);

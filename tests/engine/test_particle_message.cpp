@@ -115,8 +115,9 @@ class MessageTest : public testing::TestWithParam<Backend> {
     const HostHistory got = to->history(z);
     EXPECT_TRUE(same(picked(got.partner, arrived, kSlots), picked(all.history.partner, which, kSlots)));
     EXPECT_TRUE(same(picked(got.tangential, arrived, kSlots), picked(all.history.tangential, which, kSlots)));
-    if (rolling)
+    if (rolling) {
       EXPECT_TRUE(same(picked(got.rolling, arrived, kSlots), picked(all.history.rolling, which, kSlots)));
+    }
     // The particles that were there stay as they were.
     EXPECT_TRUE(same(picked(got.partner, {0, 1, 2}, kSlots), first.history.partner));
 
