@@ -155,9 +155,19 @@ int command_run(const std::vector<std::string>& args, Transport& transport) {
   auto mixing_due = [&](long long step) {
     return mixing_every > 0 && step >= mixing_first && (step - mixing_first) % mixing_every == 0;
   };
+  // Marking is a function of the positions at its step, so doing it again
+  // after a restart at that very step changes nothing.
+  const long long mark_step = scene.marking ? std::llround(scene.marking->time / scene.time_step) : -1;
+  auto mark_if_due = [&](long long step) {
+    if (step != mark_step) return;
+    sim->mark(*scene.marking);
+    out.log("step %lld: particles marked %d / %d by their side of the plane\n", step, int(scene.marking->front),
+            int(scene.marking->back));
+  };
   const auto t0 = Clock::now();
   auto last_checkpoint = t0;
   Progress progress(sim->step_count(), total, particles);
+  if (a.restart.empty()) mark_if_due(0);
   if (a.restart.empty()) out.snapshot(*sim);
   if (a.restart.empty() && mixing_due(0)) out.mixing(*sim);
   while (sim->step_count() < total) {
@@ -169,7 +179,9 @@ int command_run(const std::vector<std::string>& args, Transport& transport) {
                                                  : mixing_first + ((step - mixing_first) / mixing_every + 1) * mixing_every;
       chunk = std::min(chunk, next - step);
     }
+    if (mark_step > step) chunk = std::min(chunk, mark_step - step);
     sim->run(chunk);
+    mark_if_due(sim->step_count());
     progress.update(*sim);
     const long long now = sim->step_count();
     if ((every > 0 && now % every == 0) || now == total) out.snapshot(*sim);

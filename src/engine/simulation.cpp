@@ -166,7 +166,7 @@ void Simulation::upload(const std::vector<ParticleInit>& particles) {
 }
 
 void Simulation::move_walls(double t) {
-  for (Wall& w : walls_) update_wall_pose(w, t);
+  for (std::size_t k = 0; k < walls_.size(); ++k) walls_[k] = wall_at(scene_.walls[k], t);
   kernels_->set_walls(walls_);
 }
 

@@ -56,6 +56,8 @@ class Simulation {
              const RestartState& restart);
 
   void run(long long steps);  // advances `steps` time steps
+  // Sets every owned particle's marker by its side of the plane, now.
+  void mark(const MarkingSpec& m) { kernels_->mark_by_plane(store_, m); }
   double time() const { return time_; }
   long long step_count() const { return step_; }
   const SceneSpec& scene() const { return scene_; }

@@ -19,6 +19,15 @@ struct Gather {
   GS_HD void operator()(Index k) const { to[k] = from[order[k]]; }
 };
 
+// Marker by side of a plane: front where (x - point) . normal >= 0.
+struct MarkByPlane {
+  const Vec3d* position;
+  std::uint8_t* marker;
+  Vec3d point, normal;
+  std::uint8_t front, back;
+  GS_HD void operator()(Index i) const { marker[i] = dot(position[i] - point, normal) >= 0 ? front : back; }
+};
+
 template <class Exec, class Real, ContactModel Model, unsigned Effects>
 class StepKernelsImpl final : public StepKernels {
   static constexpr bool kHistory = (Effects & (kFriction | kRollingResistance)) != 0;
@@ -80,6 +89,10 @@ class StepKernelsImpl final : public StepKernels {
                                         slot_table(), forces_.force.data(),
                                         kTorque ? forces_.torque.data() : nullptr, Real(dt), fault_.data(), step};
     Exec::parallel_for(s.n_owned, k);
+  }
+
+  void mark_by_plane(ParticleStore& s, const MarkingSpec& m) override {
+    Exec::parallel_for(s.n_owned, MarkByPlane{s.position.data(), s.marker.data(), m.point, m.normal, m.front, m.back});
   }
 
   void reorder_by_cells(ParticleStore& s) override;

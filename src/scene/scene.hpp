@@ -64,6 +64,16 @@ struct DecompositionSpec {
   double rebalance_threshold = 1.2;   // re-partition when max/mean particles per rank exceeds this
 };
 
+// Sets every particle's marker by its side of a plane at one instant (the
+// seed's procedure: settle, then mark by the side of the central vertical
+// plane). Markers never change otherwise.
+struct MarkingSpec {
+  double time = 0;           // [s]
+  Vec3d point, normal;       // the plane; normal of unit length
+  std::uint8_t front = 1;    // marker where (x - point) . normal >= 0
+  std::uint8_t back = 0;     // marker elsewhere
+};
+
 struct SceneSpec {
   std::string path;                  // file it came from, for messages
   Vec3d domain_min, domain_max;      // particles must stay inside [m]
@@ -84,6 +94,7 @@ struct SceneSpec {
   int contact_slots = 12;            // history slots per particle
   DecompositionSpec decomposition;
   std::optional<MixingSpec> mixing;  // analysis.mixing (docs/MIXING.md); none: no mixing analysis
+  std::optional<MarkingSpec> marking;  // none: markers stay as created
 };
 
 }  // namespace gs

@@ -19,7 +19,7 @@ namespace {
 const std::vector<std::string> kTopKeys = {"domain",    "gravity", "contact_model", "precision",     "effects",
                                            "materials", "pairs",   "particles",     "walls",         "time_step",
                                            "duration",  "output",  "contact_slots", "decomposition",
-                                           "analysis"};
+                                           "analysis",  "marking"};
 
 void parse_decomposition(const Map& m, SceneSpec& s) {
   DecompositionSpec& d = s.decomposition;
@@ -195,6 +195,7 @@ SceneSpec parse_scene(const std::string& yaml_text, const std::string& source) {
   parse_pairs(top, s);
   resolve_time_step(top, s);
   parse_analysis(top, s);
+  parse_marking(top, s);
   return s;
 }
 

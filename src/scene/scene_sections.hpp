@@ -17,4 +17,7 @@ void parse_particles(const Map& top, SceneSpec& s);
 // `analysis:` -> s.mixing (needs the domain and the duration); scene_analysis.cpp.
 void parse_analysis(const Map& top, SceneSpec& s);
 
+// `marking:` -> s.marking (needs the duration); scene_marking.cpp.
+void parse_marking(const Map& top, SceneSpec& s);
+
 }  // namespace gs::scene_yaml

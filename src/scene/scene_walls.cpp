@@ -34,8 +34,9 @@ namespace {
 
 // Prescribed motion, shared by every wall that one entry expands to.
 void parse_motion(const Val& v, Wall& w) {
-  const Map m(v, {"velocity", "rotation"});
+  const Map m(v, {"velocity", "rotation", "start"});
   w.velocity = vec3_or(m, "velocity", Vec3d());
+  w.motion_start = number_or(m, "start", 0.0, nonnegative);
   if (!m.has("rotation")) return;
   const Map r(m.get("rotation"), {"axis_point", "axis", "rpm"});
   w.axis_point = vec3(r.get("axis_point"));
@@ -130,7 +131,7 @@ void add_mesh_wall(SceneSpec& s, const Wall& proto, const Val& v, const std::str
     fail(file, e.what());
   }
   mesh.name = name;
-  const MeshMotion motion{proto.velocity, proto.angular_velocity, proto.axis_point};
+  const MeshMotion motion{proto.velocity, proto.angular_velocity, proto.axis_point, proto.motion_start};
   try {
     add_mesh(s.meshes, mesh, proto.material, motion, crease);
   } catch (const std::exception& e) {

@@ -21,17 +21,18 @@ MeshMotion rotation_at_rpm(const Vec3d& axis_point, const Vec3d& axis_direction,
 
 MeshPose mesh_pose(const MeshMotion& motion, double time) {
   // The analytic walls' pose update, reused through a Wall carrying only the motion.
-  Wall w;
-  w.velocity = motion.velocity;
-  w.angular_velocity = motion.angular_velocity;
-  w.axis_point = motion.axis_point;
-  update_wall_pose(w, time);
+  Wall prescribed;
+  prescribed.velocity = motion.velocity;
+  prescribed.angular_velocity = motion.angular_velocity;
+  prescribed.axis_point = motion.axis_point;
+  prescribed.motion_start = motion.start;
+  const Wall w = wall_at(prescribed, time);
   MeshPose p;
   for (int i = 0; i < 9; ++i) p.rotation[i] = w.rotation[i];
   p.shift = w.shift;
   p.axis_point = motion.axis_point;
-  p.velocity = motion.velocity;
-  p.angular_velocity = motion.angular_velocity;
+  p.velocity = w.velocity;
+  p.angular_velocity = w.angular_velocity;
   return p;
 }
 

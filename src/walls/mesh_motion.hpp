@@ -15,6 +15,7 @@ struct MeshMotion {
   Vec3d velocity;          // translation [m/s]
   Vec3d angular_velocity;  // [rad/s], along the rotation axis (right-hand rule)
   Vec3d axis_point;        // a point of the rotation axis in the reference pose [m]
+  double start = 0;        // the motion begins at this time [s]; at rest before
 };
 
 // Rotation about the axis through `axis_point` along `axis_direction` (any
@@ -34,7 +35,8 @@ struct MeshPose {
 };
 
 // Pose at absolute time `time` (Rodrigues rotation by |omega| t about omega,
-// shift = velocity t), by the same code as the analytic walls.
+// shift = velocity t, t counted from the motion's start, zero velocities
+// before it), by the same code as the analytic walls (wall_at).
 MeshPose mesh_pose(const MeshMotion& motion, double time);
 
 GS_HD GS_INLINE Vec3d pose_rotate(const MeshPose& p, const Vec3d& v) {

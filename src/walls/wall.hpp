@@ -25,6 +25,9 @@ struct Wall {
   Vec3d velocity;
   Vec3d angular_velocity;
   Vec3d axis_point;
+  // The motion begins at this time [s]; until then the wall rests in its
+  // reference pose (a mixer's impeller waits while the powder settles).
+  double motion_start = 0;
 
   // Current pose: x_world = rotation * (x_ref - axis_point) + axis_point + shift.
   double rotation[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};

@@ -25,4 +25,14 @@ void update_wall_pose(Wall& w, double time) {
   R[6] = v * k.z * k.x - s * k.y;  R[7] = v * k.z * k.y + s * k.x;  R[8] = c + v * k.z * k.z;
 }
 
+Wall wall_at(const Wall& prescribed, double time) {
+  Wall w = prescribed;
+  update_wall_pose(w, motion_time(time, w.motion_start));
+  if (time < w.motion_start) {
+    w.velocity = Vec3d();
+    w.angular_velocity = Vec3d();
+  }
+  return w;
+}
+
 }  // namespace gs

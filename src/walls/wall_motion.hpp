@@ -11,4 +11,11 @@ namespace gs {
 // step, so it does not drift and is identical after a restart.
 void update_wall_pose(Wall& w, double time);
 
+// Time the motion has run at `time`, for a motion that begins at `start`.
+inline double motion_time(double time, double start) { return time > start ? time - start : 0.0; }
+
+// The prescribed wall as it is at `time`: posed after motion_time(time,
+// w.motion_start), with zero velocities while its motion has not begun.
+Wall wall_at(const Wall& prescribed, double time);
+
 }  // namespace gs

@@ -186,6 +186,30 @@ TEST(SceneLoader, WallPenetrationGeometry) {
   EXPECT_LT(wall_penetration(cyl, Vec3d(3, 0, 2.5), 0.5), 0);  // beyond the length: not checked
 }
 
+TEST(SceneLoader, MarkingAndMotionStart) {
+  const SceneSpec s = parse_scene(kGood + "marking: {time: 0.25, plane: {point: [0.05, 0, 0], normal: [2, 0, 0]}, "
+                                          "front: 1, back: 0}\n", "scene.yaml");
+  ASSERT_TRUE(s.marking.has_value());
+  EXPECT_EQ(s.marking->time, 0.25);
+  EXPECT_EQ(s.marking->point.x, 0.05);
+  EXPECT_EQ(s.marking->normal.x, 1);  // normalised
+  EXPECT_EQ(s.marking->front, 1);
+  EXPECT_EQ(s.marking->back, 0);
+  EXPECT_FALSE(parse_scene(kGood, "scene.yaml").marking.has_value());
+  const SceneSpec c = parse_scene(edit("rpm: 60}", "rpm: 60}, start: 0.5", kCylinder), "c");
+  for (const Wall& w : c.walls) EXPECT_EQ(w.motion_start, 0.5);
+
+  expect_error(kGood + "marking: {time: 0.6, plane: {point: [0, 0, 0], normal: [1, 0, 0]}, front: 1, back: 0}\n", 20,
+               "marking.time", "must not exceed the duration");
+  expect_error(kGood + "marking: {time: 0.1, plane: {point: [0, 0, 0], normal: [0, 0, 0]}, front: 1, back: 0}\n", 20,
+               "marking.plane.normal", "zero vector");
+  expect_error(kGood + "marking: {time: 0.1, plane: {point: [0, 0, 0], normal: [1, 0, 0]}, front: 1}\n", 20,
+               "marking", "missing required key 'back'");
+  const std::string negative_start = error_of(edit("rpm: 60}", "rpm: 60}, start: -1", kCylinder));
+  EXPECT_NE(negative_start.find("motion.start"), std::string::npos) << negative_start;
+  EXPECT_NE(negative_start.find(">= 0"), std::string::npos) << negative_start;
+}
+
 TEST(SceneLoaderErrors, UnknownKeys) {
   expect_error(kGood + "gravty: [0, 0, 1]\n", 20, "gravty", "allowed here: domain, gravity");
   expect_error(edit("spacing: 0.003", "spacng: 0.003"), 14, "particles[0].lattice.spacng", "unknown key");

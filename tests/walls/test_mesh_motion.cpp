@@ -61,6 +61,24 @@ TEST(MeshMotion, MaterialVelocityIsTheTimeDerivativeOfPosition) {
   EXPECT_NEAR(norm(v - dxdt), 0, 1e-8 * norm(v));
 }
 
+TEST(MeshMotion, RestsUntilItsStartThenRunsFromIt) {
+  MeshMotion m = rotation_at_rpm(Vec3d(0.3, -0.1, 0.2), Vec3d(1, -2, 0.5), 120, Vec3d(0.2, -0.1, 0.05));
+  const MeshMotion from_zero = m;
+  m.start = 1.5;
+  const Vec3d x_ref(0.04, 0.01, -0.02);
+  for (double t : {0.0, 0.7, 1.5}) {
+    const MeshPose p = mesh_pose(m, t);
+    EXPECT_NEAR(norm(pose_point(p, x_ref) - x_ref), 0, 1e-16) << t;
+    // At rest before the start; moving from it on.
+    EXPECT_EQ(norm(mesh_point_velocity(p, x_ref)) == 0, t < m.start) << t;
+  }
+  // After the start: the pose and velocities of a motion begun at 0, 1.5 s later.
+  const MeshPose late = mesh_pose(m, 1.5 + 0.731), early = mesh_pose(from_zero, 0.731);
+  EXPECT_NEAR(norm(pose_point(late, x_ref) - pose_point(early, x_ref)), 0, 1e-15);
+  EXPECT_EQ(norm(late.angular_velocity - from_zero.angular_velocity), 0);
+  EXPECT_EQ(norm(late.velocity - from_zero.velocity), 0);
+}
+
 TEST(MeshMotion, ContactsCarryTheMaterialVelocity) {
   // A flat square turning about its normal: the contact point moves with it.
   const test::FlatSquare sq = test::make_flat_square(4, 0.25, 0.1, test::Rotation(Vec3d(0, 0, 1), 0), Vec3d(), 6);
