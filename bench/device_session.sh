@@ -2,7 +2,7 @@
 # One session on a GPU machine: build with CUDA, run the whole test suite on
 # both backends, compare CPU and GPU runs of the demo, then the benchmarks.
 # Results go to $OUT (default ./device_out). Usage, from the repository root:
-#   bench/device_session.sh [all|tests|bench|scaling][,...]
+#   bench/device_session.sh [all|tests|bench|mixer|scaling][,...]
 # METIS and yaml-cpp may be carried as unpacked Debian packages in carry/root
 # (see docs/PERFORMANCE.md) when the machine lacks them.
 set -uo pipefail
@@ -57,6 +57,10 @@ if wants bench; then
   } > "$OUT/bench.log" 2>&1
   cat "$OUT/bench.log" >> "$log"
 fi
+if wants mixer; then
+  bench/mixer_run.sh build-gpu a "${MIXER_LIMIT:-240}" "$OUT/mixer" cuda >> "$log" 2>&1
+fi
+
 if wants scaling; then
   gpus=$(nvidia-smi -L | wc -l)
   {

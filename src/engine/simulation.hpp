@@ -88,6 +88,7 @@ class Simulation {
   void step_particles_between_ranks();
   void check_fault();
   double phase_seconds(std::chrono::steady_clock::time_point start) const;
+  static constexpr long long kTimedEvery = 16;  // steps between timed ones
 
   SceneSpec scene_;
   RunOptions options_;

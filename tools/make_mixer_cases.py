@@ -1,0 +1,148 @@
+#!/usr/bin/env python3
+"""Writes the seed mixer's cases a-d (Radeke, Glasser, Khinast 2010, Tables
+1-4) as grainstorm scenes, following the paper's procedure: particles are
+created above the impeller (at rest), fall and settle for `settle` seconds,
+are then marked by the side of the central vertical plane x = 0, and the
+impeller turns from that instant for the given number of revolutions, with
+the mixing analysis after every revolution.
+
+    tools/make_mixer_cases.py [--out-dir cases/mixer] [--cases abcd]
+        [--revolutions 32] [--froude] [--stiffness-scale 1] [--suffix ""]
+
+--froude uses the paper's Froude-scaled impeller speeds (Table 2, Eq. 12)
+instead of the reference 30 rpm. --stiffness-scale multiplies Table 4's
+stiffnesses (a softer, cheaper variant: the time step grows as its inverse
+square root; see docs/MIXER.md for what it changes).
+"""
+import argparse
+import math
+import os
+import sys
+
+# Table 2/3: particles, diameter [m], Froude-scaled rpm.
+CASES = {
+    "a": (7680, 3.0e-3, 5.6695),
+    "b": (76800, 2.1e-3, 3.7500),
+    "c": (768000, 0.98e-3, 2.5355),
+    "d": (7680000, 0.45e-3, 1.7039),
+}
+DENSITY = 2500.0          # Table 4 [kg/m^3]
+K_NORMAL = 1.05e5         # Table 4 [N/m]
+K_TANGENTIAL = 8.25e4     # Table 4 [N/m]
+VESSEL_RADIUS = 0.05      # Table 1: DS = 100 mm
+SHAFT_TOP = 0.100         # impeller.stl: shaft top 100 mm above the hub's bottom face
+FLOOR = -0.002            # vessel floor, 2 mm below the impeller (the paper does not say)
+FILL_RADIUS = 0.047       # the creation cylinder, clear of the vessel wall
+CREATION_PACKING = 0.25   # solid fraction of the random fill the particles fall from
+BED_PACKING = 0.60        # solid fraction of the settled bed (for the sample height)
+SAMPLE_MASS = 0.46e-3     # Table 3: about 0.46 g in every case [kg]
+
+
+def solid_volume(count, diameter):
+    return count * math.pi / 6 * diameter**3
+
+
+def scene(case, revolutions, froude, stiffness_scale, settle, suffix):
+    count, diameter, froude_rpm = CASES[case]
+    rpm = froude_rpm if froude else 30.0
+    period = 60.0 / rpm
+    radius = diameter / 2
+    volume = solid_volume(count, diameter)
+    # Created in a cylinder above the shaft top, loose, so nothing starts inside the impeller.
+    fill_bottom = SHAFT_TOP + radius + 0.001
+    fill_height = volume / CREATION_PACKING / (math.pi * FILL_RADIUS**2)
+    top = fill_bottom + fill_height + 0.002
+    bed_height = volume / BED_PACKING / (math.pi * VESSEL_RADIUS**2)
+    sample_height = round(min(bed_height, 0.08), 4)
+    kn, kt = K_NORMAL * stiffness_scale, K_TANGENTIAL * stiffness_scale
+    duration = settle + revolutions * period
+    # Snapshots at multiples of the settling time, so one lands on the marking;
+    # the big beds less often (case d: 250 MB each).
+    snapshot_every = settle * (1 if count < 500000 else 2)
+    name = f"case_{case}"
+    return f"""# Seed mixer, case {case} (Radeke et al. 2010, Tables 1-4): {count:,} glass spheres of
+# {diameter * 1e3:.2f} mm in the 100 mm vessel with the four-bladed impeller at {rpm:g} rpm
+# ({"Froude-scaled, Table 2" if froude else "the reference speed"}), real units.
+# Written by tools/make_mixer_cases.py; procedure and choices: docs/MIXER.md.
+# Stiffness {"of Table 4" if stiffness_scale == 1 else f"Table 4 x {stiffness_scale:g} (a cheaper variant)"}.
+# Procedure: fall from a loose fill above the shaft and settle for {settle:g} s with
+# the impeller at rest; at t = {settle:g} s mark by the side of the plane x = 0 and
+# start the impeller; {revolutions} revolutions; mixing statistics every revolution.
+# impeller.stl: build/tools/make_impeller cases/mixer/impeller.stl
+
+domain: {{min: [-0.052, -0.052, {FLOOR - 0.001}], max: [0.052, 0.052, {top + 0.002:.4f}]}}
+gravity: [0, 0, -9.81]
+contact_model: linear
+precision: fp32
+effects: {{friction: true, rolling_resistance: false, cohesion: false}}
+
+materials:
+  - {{name: glass, density: {DENSITY:g}}}
+  - {{name: steel, density: 7800}}
+
+pairs:
+  - {{materials: [glass, glass], stiffness_normal: {kn:.6g}, stiffness_tangential: {kt:.6g}, restitution: 0.78, friction: 0.5}}
+  - {{materials: [glass, steel], stiffness_normal: {kn:.6g}, stiffness_tangential: {kt:.6g}, restitution: 0.78, friction: 0.2}}
+
+walls:
+  - cylinder: {{base: [0, 0, {FLOOR}], axis: [0, 0, 1], radius: {VESSEL_RADIUS}, length: {top - FLOOR:.4f}, caps: bottom}}
+    material: steel
+    name: vessel
+  - mesh: {{stl: impeller.stl}}
+    material: steel
+    name: impeller
+    motion: {{rotation: {{axis_point: [0, 0, 0], axis: [0, 0, 1], rpm: {rpm:g}}}, start: {settle:g}}}
+
+particles:
+  - random_fill:
+      material: glass
+      region: {{cylinder: {{base: [0, 0, {fill_bottom:.4f}], axis: [0, 0, 1], radius: {FILL_RADIUS}, length: {fill_height:.4f}}}}}
+      count: {count}
+      radius: {radius:g}
+      seed: 1
+
+marking: {{time: {settle:g}, plane: {{point: [0, 0, 0], normal: [1, 0, 0]}}, front: 1, back: 0}}
+
+time_step: {{fraction_of_contact_time: 0.2}}
+duration: {duration:.6g}                 # settling + {revolutions} revolutions
+output:
+  interval: {snapshot_every:g}                # snapshots at the marking and every {snapshot_every:g} s after it
+  fields: [id, material, marker, radius, position, velocity]
+  directory: out/mixer_{case}{suffix}
+  checkpoint_minutes: 30
+analysis:
+  mixing:
+    center: [0, 0]
+    bottom: {FLOOR}
+    height: {sample_height}            # about the settled bed's height
+    rings: {{inner_radius: 0.012, outer_radius: 0.048, count: 3}}
+    sample_mass: {SAMPLE_MASS}
+    bulk_density: {DENSITY * BED_PACKING:g}
+    start: {settle:g}
+    revolution_period: {period:.6g}
+"""
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--out-dir", default=os.path.join(os.path.dirname(__file__), "..", "cases", "mixer"))
+    p.add_argument("--cases", default="abcd")
+    p.add_argument("--revolutions", type=int, default=32)
+    p.add_argument("--froude", action="store_true")
+    p.add_argument("--stiffness-scale", type=float, default=1.0)
+    p.add_argument("--settle", type=float, default=1.0, help="seconds of settling before marking [1.0]")
+    p.add_argument("--suffix", default="", help="appended to the file names, e.g. _froude")
+    a = p.parse_args()
+    if not set(a.cases) <= set(CASES) or not a.cases:
+        sys.exit(f"make_mixer_cases: --cases must be letters of abcd, got '{a.cases}'")
+    if a.revolutions < 1 or not a.stiffness_scale > 0 or not a.settle > 0:
+        sys.exit("make_mixer_cases: --revolutions >= 1, --stiffness-scale > 0 and --settle > 0 are required")
+    for c in a.cases:
+        path = os.path.join(a.out_dir, f"case_{c}{a.suffix}.yaml")
+        with open(path, "w") as f:
+            f.write(scene(c, a.revolutions, a.froude, a.stiffness_scale, a.settle, a.suffix))
+        print(path)
+
+
+if __name__ == "__main__":
+    main()
