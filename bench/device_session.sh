@@ -2,7 +2,7 @@
 # One session on a GPU machine: build with CUDA, run the whole test suite on
 # both backends, compare CPU and GPU runs of the demo, then the benchmarks.
 # Results go to $OUT (default ./device_out). Usage, from the repository root:
-#   bench/device_session.sh [all|tests|bench|mixer|scaling][,...]
+#   bench/device_session.sh [all|tests|bench|effects|mixer|mixacc|scaling][,...]
 # METIS and yaml-cpp may be carried as unpacked Debian packages in carry/root
 # (see docs/PERFORMANCE.md) when the machine lacks them.
 set -uo pipefail
@@ -57,6 +57,24 @@ if wants bench; then
   } > "$OUT/bench.log" 2>&1
   cat "$OUT/bench.log" >> "$log"
 fi
+if wants effects; then
+  # Only the effects a scene calls for: the same bed, effect by effect, on the GPU and the CPU.
+  b=build-gpu/bench/settle_bench
+  {
+    for e in none friction rolling cohesion; do $b --backend cuda --n 4000000 --steps 200 --effects $e; done
+    $b --backend cuda --n 4000000 --steps 200 --mesh impeller
+    for e in none friction rolling cohesion; do OMP_NUM_THREADS=16 $b --backend cpu --n 1000000 --steps 30 --effects $e; done
+    OMP_NUM_THREADS=16 $b --backend cpu --n 1000000 --steps 30 --mesh impeller
+    OMP_NUM_THREADS=1 $b --backend cpu --n 100000 --steps 30
+  } > "$OUT/effects.log" 2>&1
+  cat "$OUT/effects.log" >> "$log"
+fi
+
+if wants mixacc; then
+  bench/mixer_accuracy.sh build-gpu cuda /tmp/mixacc > "$OUT/mixer_accuracy_cuda.csv" 2>> "$log"
+  cat "$OUT/mixer_accuracy_cuda.csv" >> "$log"
+fi
+
 if wants mixer; then
   bench/mixer_run.sh build-gpu a "${MIXER_LIMIT:-240}" "$OUT/mixer" cuda >> "$log" 2>&1
 fi

@@ -6,6 +6,7 @@
 //
 //   settle_bench [--n N] [--steps S] [--backend cpu|cuda] [--precision fp32|fp64]
 //                [--effects none|friction|rolling|cohesion] [--model linear|hertz]
+//                [--mesh impeller]   (the seed's impeller turning at 30 rpm in the bed)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +17,8 @@
 #include "backend/memory.hpp"
 #include "contact/contact_time.hpp"
 #include "engine/simulation.hpp"
+#include "walls/impeller.hpp"
+#include "walls/mesh.hpp"
 
 namespace {
 
@@ -26,6 +29,7 @@ struct Options {
   gs::Precision precision = gs::Precision::fp32;
   unsigned effects = gs::kFriction;
   gs::ContactModel model = gs::ContactModel::linear;
+  bool mesh = false;  // the seed's impeller turning at 30 rpm in the bed
 };
 
 unsigned parse_effects(const std::string& s) {
@@ -48,6 +52,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--precision") o.precision = v == "fp64" ? gs::Precision::fp64 : gs::Precision::fp32;
     else if (a == "--effects") o.effects = parse_effects(v);
     else if (a == "--model") o.model = v == "hertz" ? gs::ContactModel::hertz_mindlin : gs::ContactModel::linear;
+    else if (a == "--mesh") o.mesh = v == "impeller";
     else throw std::invalid_argument("unknown option " + a);
   }
   return o;
@@ -90,12 +95,26 @@ gs::SceneSpec bed_scene(const Options& o) {
   s.walls = {box_side({0, 0, 0}, {1, 0, 0}), box_side({width, 0, 0}, {-1, 0, 0}), box_side({0, 0, 0}, {0, 1, 0}),
              box_side({0, width, 0}, {0, -1, 0}), box_side({0, 0, 0}, {0, 0, 1}),
              box_side({0, 0, height}, {0, 0, -1})};
+  // The impeller (hub, shaft, 4 blades; 95 mm across) stands on the floor in
+  // the middle of the bed; particles in the cylinder it sweeps are left out.
+  const gs::Vec3d centre(width / 2, width / 2, 2 * r);
+  const gs::ImpellerSpec impeller;
+  const double swept = impeller.blade_diameter / 2 + 2 * r;
+  const double top = centre.z + impeller.hub_height + impeller.shaft_length + 2 * r;
+  if (o.mesh) {
+    gs::TriangleMesh m = gs::make_impeller(impeller);
+    for (gs::Vec3d& v : m.vertices) v += centre;
+    m.name = "impeller";
+    gs::add_mesh(s.meshes, m, 0, gs::rotation_at_rpm(centre, {0, 0, 1}, 30));
+  }
   for (long long k = 0; k < o.n; ++k) {
     gs::ParticleInit q;
     q.id = gs::ParticleId(k);
     q.radius = r;
     q.position = {lo + double(k % side) * spacing, lo + double((k / side) % side) * spacing,
                   lo + double(k / (side * side)) * spacing};
+    const double dx = q.position.x - centre.x, dy = q.position.y - centre.y;
+    if (o.mesh && dx * dx + dy * dy < swept * swept && q.position.z < top) continue;
     s.particles.push_back(q);
   }
   s.contact_time = gs::critical_contact_time(s);
@@ -115,15 +134,16 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     sim.run(o.steps);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const double rate = double(o.steps) * double(o.n) / wall;
-    const double bytes = double(gs::backend_peak_bytes(o.backend)) / double(o.n);
+    const double n = double(scene.particles.size());
+    const double rate = double(o.steps) * n / wall;
+    const double bytes = double(gs::backend_peak_bytes(o.backend)) / n;
     const gs::StepTimings& t = sim.timings();
-    std::printf("backend=%s n=%lld precision=%s effects=%u model=%s steps=%lld wall_s=%.3f "
+    std::printf("backend=%s n=%zu mesh=%s precision=%s effects=%u model=%s steps=%lld wall_s=%.3f "
                 "particle_steps_per_s=%.4g peak_bytes_per_particle=%.1f held_bytes_per_particle=%.1f "
                 "integrate_s=%.3f neighbours_s=%.3f forces_s=%.3f\n",
-                gs::backend_name(o.backend), o.n, o.precision == gs::Precision::fp64 ? "fp64" : "fp32", o.effects,
+                gs::backend_name(o.backend), scene.particles.size(), o.mesh ? "impeller" : "none", o.precision == gs::Precision::fp64 ? "fp64" : "fp32", o.effects,
                 o.model == gs::ContactModel::linear ? "linear" : "hertz", o.steps, wall, rate, bytes,
-                double(sim.device_bytes()) / double(o.n), t.integrate, t.neighbours, t.forces);
+                double(sim.device_bytes()) / n, t.integrate, t.neighbours, t.forces);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "settle_bench: %s\n", e.what());
