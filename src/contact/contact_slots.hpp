@@ -38,6 +38,30 @@ struct SlotTable {
     return free_slot;
   }
 
+  // Slot of the existing contact (i, partner_id), or -1.
+  GS_HD int find(Index i, ParticleId partner_id) const {
+    const std::size_t base = std::size_t(i) * strides.particle_stride;
+    for (int s = 0; s < slots; ++s)
+      if (partner[base + std::size_t(s) * strides.slot_stride] == partner_id) return s;
+    return -1;
+  }
+
+  // A contact that moved to another feature of the same surface continues:
+  // the first slot not yet touched this step whose partner `same_contact`
+  // accepts is handed to partner_id with its springs. -1 when there is none.
+  template <class SameContact>
+  GS_HD int inherit(Index i, ParticleId partner_id, unsigned touched, const SameContact& same_contact) const {
+    const std::size_t base = std::size_t(i) * strides.particle_stride;
+    for (int s = 0; s < slots; ++s) {
+      ParticleId& p = partner[base + std::size_t(s) * strides.slot_stride];
+      if (p != kNoPartner && !(touched & (1u << s)) && same_contact(p)) {
+        p = partner_id;
+        return s;
+      }
+    }
+    return -1;
+  }
+
   GS_HD ContactSprings<Real> load(Index i, int s) const {
     ContactSprings<Real> springs;
     const std::size_t k = strides.at(s, std::size_t(i));

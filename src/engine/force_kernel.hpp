@@ -23,6 +23,22 @@ GS_HD GS_INLINE ParticleId mesh_partner_id(std::uint32_t feature_key) {
   return kMeshPartnerBase | ((feature_key >> 30) << 28) | (feature_key & 0x0FFFFFFFu);
 }
 
+// The inverse, for a partner id in the mesh range.
+GS_HD GS_INLINE std::uint32_t mesh_feature_key_of(ParticleId partner) {
+  return (((partner >> 28) & 3u) << 30) | (partner & 0x0FFFFFFFu);
+}
+
+// Whether a history partner is a feature adjacent to `key` (sharing a vertex,
+// hence of the same mesh): the same contact, moved on across the surface.
+struct SameMeshContact {
+  const MeshView* meshes;
+  std::uint32_t key;
+  GS_HD bool operator()(ParticleId partner) const {
+    return partner >= kMeshPartnerBase && partner < kWallPartnerBase &&
+           mesh_features_adjacent(*meshes, key, mesh_feature_key_of(partner));
+  }
+};
+
 template <class Real, ContactModel Model, unsigned Effects>
 struct ForceKernel {
   // Particles (owned and ghosts)
@@ -52,6 +68,11 @@ struct ForceKernel {
   long long step;
 
   static constexpr bool kTorque = (Effects & (kFriction | kRollingResistance)) != 0;
+  static constexpr bool kHistory = SlotTable<Real, Effects>::kActive;
+  static constexpr int kAnySlot = -2;  // apply(): find the contact's slot, or claim one
+  // Mesh contacts without a slot wait until the others have taken theirs (at
+  // most this many per particle; more claim a slot at once).
+  static constexpr int kWaitingMeshContacts = 4;
 
   GS_HD void operator()(Index i) const {
     ContactLoad<Real> total;
@@ -77,34 +98,58 @@ struct ForceKernel {
     for (int w = 0; w < n_walls; ++w) add_wall_contact(i, w, xi, total, touched);
     // One uniform branch per particle when the scene has no mesh (docs/MESHES.md, cost).
     if (meshes.n_triangles > 0) add_mesh_contacts(i, xi, total, touched);
-    if constexpr (SlotTable<Real, Effects>::kActive) history.release_untouched(i, touched);
+    if constexpr (kHistory) history.release_untouched(i, touched);
     force[i] = total.force;
     if constexpr (kTorque) torque[i] = total.torque;
   }
 
  private:
-  // Visitor of for_each_mesh_contact: one mesh contact of particle i.
+  // Visitor of for_each_mesh_contact: one mesh contact of particle i. A
+  // contact whose feature already has a history slot is applied at once; a
+  // new one waits until every such contact has marked its slot touched, so
+  // that it can take over only the slot of a contact that has ended (the
+  // same contact, moved on to an adjacent feature).
   struct MeshContactVisitor {
     const ForceKernel* kernel;
     Index i;
     Vec3d xi;
     ContactLoad<Real>* total;
     unsigned* touched;
-    GS_HD void operator()(const MeshContact& c) const { kernel->add_mesh_contact(i, xi, c, *total, *touched); }
+    MeshContact* waiting;
+    int* n_waiting;
+    GS_HD void operator()(const MeshContact& c) const {
+      if constexpr (kHistory) {
+        const int slot = kernel->history.find(i, mesh_partner_id(c.feature_key));
+        if (slot < 0 && *n_waiting < kWaitingMeshContacts) {
+          waiting[(*n_waiting)++] = c;
+          return;
+        }
+        kernel->add_mesh_contact(i, xi, c, slot < 0 ? kAnySlot : slot, *total, *touched);
+      } else {
+        kernel->add_mesh_contact(i, xi, c, kAnySlot, *total, *touched);
+      }
+    }
   };
 
   GS_HD void add_mesh_contacts(Index i, const Vec3d& xi, ContactLoad<Real>& total, unsigned& touched) const {
     if (mesh_load)
       for (int m = 0; m < meshes.n_meshes; ++m) mesh_load[std::size_t(i) * meshes.n_meshes + m] = MeshLoad{};
-    MeshContactVisitor visit{this, i, xi, &total, &touched};
+    MeshContact waiting[kWaitingMeshContacts];
+    int n_waiting = 0;
+    MeshContactVisitor visit{this, i, xi, &total, &touched, waiting, &n_waiting};
     for_each_mesh_contact(meshes, grid, xi, double(radius[i]), visit);
+    for (int k = 0; k < n_waiting; ++k) {
+      const MeshContact& c = waiting[k];
+      const int slot = history.inherit(i, mesh_partner_id(c.feature_key), touched, SameMeshContact{&meshes, c.feature_key});
+      add_mesh_contact(i, xi, c, slot < 0 ? kAnySlot : slot, total, touched);
+    }
   }
 
   // As a wall contact, at the mesh feature's contact point; the load on the
   // mesh is the reaction: minus the force, and minus the moment about the
   // mesh's rotation centre c of the force at the particle centre plus the
   // torque about it ((x_i - c) x F + T, which includes the rolling couple).
-  GS_HD void add_mesh_contact(Index i, const Vec3d& xi, const MeshContact& c, ContactLoad<Real>& total,
+  GS_HD void add_mesh_contact(Index i, const Vec3d& xi, const MeshContact& c, int slot, ContactLoad<Real>& total,
                               unsigned& touched) const {
     const MeshPose& pose = meshes.pose[c.mesh];
     ContactKinematics<Real> k;
@@ -118,7 +163,7 @@ struct ForceKernel {
     k.effective_mass = mass[i];
     k.effective_radius = ri;
     const ContactLoad<Real> load = apply(i, mesh_partner_id(c.feature_key),
-                                         pairs(material[i], meshes.material[c.mesh]), k, total, touched);
+                                         pairs(material[i], meshes.material[c.mesh]), k, total, touched, slot);
     if (mesh_load) {
       MeshLoad& on_mesh = mesh_load[std::size_t(i) * meshes.n_meshes + c.mesh];
       const Vec3d f(load.force);
@@ -167,12 +212,13 @@ struct ForceKernel {
     apply(i, kWallPartnerBase + ParticleId(w), pairs(material[i], walls[w].material), k, total, touched);
   }
 
+  // slot: the contact's history slot when the caller knows it, else kAnySlot.
   GS_HD ContactLoad<Real> apply(Index i, ParticleId partner_id, const PairParams<Real>& p,
-                                const ContactKinematics<Real>& k, ContactLoad<Real>& total, unsigned& touched) const {
+                                const ContactKinematics<Real>& k, ContactLoad<Real>& total, unsigned& touched,
+                                int slot = kAnySlot) const {
     ContactSprings<Real> springs;
-    int slot = -1;
-    if constexpr (SlotTable<Real, Effects>::kActive) {
-      slot = history.find_or_claim(i, partner_id, touched);
+    if constexpr (kHistory) {
+      if (slot == kAnySlot) slot = history.find_or_claim(i, partner_id, touched);
       if (slot >= 0) {
         touched |= 1u << slot;
         springs = history.load(i, slot);
@@ -181,7 +227,7 @@ struct ForceKernel {
       }
     }
     const ContactLoad<Real> load = contact_load<Real, Model, Effects>(p, k, springs, dt);
-    if constexpr (SlotTable<Real, Effects>::kActive) {
+    if constexpr (kHistory) {
       if (slot >= 0) history.store(i, slot, springs);
     }
     total.force += load.force;

@@ -78,6 +78,35 @@ TEST_P(MeshEngineTest, TessellatedFloorActsAsPlane) {
   }
 }
 
+// A sphere rolling without slipping down a slope (gravity tilted by 10 deg)
+// crosses faces, edges and vertices of the tessellated floor: its friction
+// spring must carry over from feature to feature as it does on the plane, so
+// the two runs agree, and both roll at a = 5/7 g sin(theta).
+TEST_P(MeshEngineTest, RollsAcrossFacetsAsOnPlane) {
+  const double theta = 10 * M_PI / 180;
+  SceneSpec plane = scene_with_gravity();
+  plane.effects = kFriction;
+  plane.pairs[0].rolling_friction = 0;
+  plane.gravity = {kGravity * std::sin(theta), 0, -kGravity * std::cos(theta)};
+  const Vec3d start(-0.0035, 0.0003, kRadius - mass() * kGravity * std::cos(theta) / kStiffness);
+  plane.particles = {particle(0, kRadius, start)};
+  SceneSpec mesh = plane;
+  plane.walls = {plane_wall({0, 0, 0}, {0, 0, 1})};
+  add_mesh(mesh.meshes, floor_square().mesh);
+  Simulation on_plane(plane, {GetParam()}), on_mesh(mesh, {GetParam()});
+  const int steps = int(0.09 / plane.time_step);
+  double max_gap = 0;
+  for (int done = 0; done < steps; done += 200) {
+    on_plane.run(200);
+    on_mesh.run(200);
+    max_gap = std::max(max_gap, norm(on_plane.snapshot().position[0] - on_mesh.snapshot().position[0]));
+  }
+  const double t = on_plane.time(), travelled = on_plane.snapshot().position[0].x - start.x;
+  EXPECT_GT(travelled, 0.004) << "the sphere should cross several facets";
+  EXPECT_NEAR(travelled, 0.5 * 5.0 / 7.0 * kGravity * std::sin(theta) * t * t, 0.02 * travelled);
+  EXPECT_LT(max_gap, 1e-12) << "the mesh run left the plane run (a spring lost at a facet boundary)";
+}
+
 // A flat disk of radius 2 cm in rings of triangles around its centre.
 TriangleMesh disk_mesh(double radius, int rings, int sectors) {
   TriangleMesh mesh;
