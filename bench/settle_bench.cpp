@@ -137,7 +137,7 @@ int main(int argc, char** argv) {
     const double n = double(scene.particles.size());
     const double rate = double(o.steps) * n / wall;
     const double bytes = double(gs::backend_peak_bytes(o.backend)) / n;
-    const gs::StepTimings& t = sim.timings();
+    const gs::StepTimings t = sim.timings();
     std::printf("backend=%s n=%zu mesh=%s precision=%s effects=%u model=%s steps=%lld wall_s=%.3f "
                 "particle_steps_per_s=%.4g peak_bytes_per_particle=%.1f held_bytes_per_particle=%.1f "
                 "integrate_s=%.3f neighbours_s=%.3f forces_s=%.3f\n",

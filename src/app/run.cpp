@@ -206,7 +206,7 @@ int command_run(const std::vector<std::string>& args, Transport& transport) {
   out.log("done: %lld steps, t = %.6g s, %.3g particle-steps/s\n", total, sim->time(),
           wall > 0 ? double(sim->step_count()) * double(particles) / wall : 0.0);
   if (exchange) out.log("decomposition at the end: %s\n", exchange->describe().c_str());
-  const StepTimings& t = sim->timings();
+  const StepTimings t = sim->timings();
   out.log("time per phase (s, rank 0): integration %.3f, neighbour build %.3f, contact forces %.3f, exchange %.3f, "
           "output %.3f, total wall %.3f\n",
           t.integrate, t.neighbours, t.forces, t.exchange, wall - (t.integrate + t.neighbours + t.forces + t.exchange),

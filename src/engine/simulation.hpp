@@ -76,7 +76,9 @@ class Simulation {
   ParticleSnapshot snapshot() const;  // this rank's owned particles
   HostHistory history() const;  // in snapshot (id) order
   std::size_t device_bytes() const;
-  const StepTimings& timings() const { return timings_; }
+  // Wall time in run() per phase: the total is measured, its split over the
+  // phases is that of the timed steps (every kTimedEvery-th, see phase_seconds).
+  StepTimings timings() const;
 
  private:
   void set_up(const SceneSpec& scene);
@@ -104,7 +106,8 @@ class Simulation {
   std::vector<Vec3d> binned_vertex_;   // vertices at the last binning
   double time_ = 0;
   long long step_ = 0;
-  StepTimings timings_;
+  StepTimings timings_;  // sampled: the timed steps' phases
+  double run_seconds_ = 0;  // all of run(), measured
 };
 
 }  // namespace gs

@@ -16,7 +16,7 @@
 
 namespace gs {
 
-// Wall time per phase, estimated from every 16th step (Simulation::phase_seconds).
+// Wall time per phase [s].
 struct StepTimings {
   double integrate = 0, neighbours = 0, forces = 0, exchange = 0;
 };
