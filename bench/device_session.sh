@@ -2,7 +2,7 @@
 # One session on a GPU machine: build with CUDA, run the whole test suite on
 # both backends, compare CPU and GPU runs of the demo, then the benchmarks.
 # Results go to $OUT (default ./device_out). Usage, from the repository root:
-#   bench/device_session.sh [all|tests|bench|effects|mixer|mixacc|scaling][,...]
+#   bench/device_session.sh [all|tests|bench|effects|mixer|mixprofile|mixacc|scaling][,...]
 # METIS and yaml-cpp may be carried as unpacked Debian packages in carry/root
 # (see docs/PERFORMANCE.md) when the machine lacks them.
 set -uo pipefail
@@ -73,6 +73,15 @@ fi
 if wants mixacc; then
   bench/mixer_accuracy.sh build-gpu cuda /tmp/mixacc > "$OUT/mixer_accuracy_cuda.csv" 2>> "$log"
   cat "$OUT/mixer_accuracy_cuda.csv" >> "$log"
+fi
+
+if wants mixprofile; then
+  # Where a small mixer's step goes: phase split of case a at rest and of its cheap variant turning.
+  for c in "case_a.yaml 30000" "case_a_ci.yaml 20000"; do
+    set -- $c
+    (cd cases/mixer && "$root/build-gpu/src/grainstorm" run "$1" --backend cuda --steps "$2" --out "/tmp/prof_$1" 2>&1 |
+       grep -E "particles,|done|time per phase")
+  done >> "$log" 2>&1
 fi
 
 if wants mixer; then
