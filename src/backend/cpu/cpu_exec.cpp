@@ -1,17 +1,31 @@
 #include "backend/cpu/cpu_exec.hpp"
 
+#include <omp.h>
+
 #include <utility>
 #include <vector>
 
 namespace gs {
 
+namespace {
+
+constexpr int kDigitBits = 11;
+constexpr std::size_t kBuckets = std::size_t(1) << kDigitBits;
+
+// Thread t's share [begin, end) of n items, in thread order.
+Index chunk_begin(Index n, int t, int threads) { return Index(std::int64_t(n) * t / threads); }
+
+}  // namespace
+
 // Least-significant-digit radix sort, 11 bits a pass: stable, O(N) per pass,
-// and identical on every machine. Keys already in order (the common case
-// between two reorders of a slowly moving bed) cost one read; digits in which
-// no two keys differ (the unused high bits of ids and cells) are skipped.
+// and identical on every machine and for any thread count (the keys are
+// unique, so the sorted order is too). Each thread counts and scatters its
+// own contiguous share of the items; the bucket offsets are laid out bucket
+// by bucket, thread by thread, which keeps the scatter stable. Keys already
+// in order (the common case between two reorders of a slowly moving bed)
+// cost one read; digits in which no two keys differ (the unused high bits of
+// ids and cells) are skipped.
 void CpuExec::sort_pairs(CellList& c, Index n) {
-  constexpr int kDigitBits = 11;
-  constexpr std::size_t kBuckets = std::size_t(1) << kDigitBits;
   std::uint64_t* keys = c.keys.data();
   std::uint64_t* keys_out = c.keys_alt.data();
   Index* values = c.sorted.data();
@@ -19,26 +33,40 @@ void CpuExec::sort_pairs(CellList& c, Index n) {
   if (n <= 1) return;
   bool in_order = true;
   std::uint64_t varying = 0;
+#pragma omp parallel for reduction(&& : in_order) reduction(| : varying) if (n >= kSerialBelow)
   for (Index i = 1; i < n; ++i) {
     in_order = in_order && keys[i - 1] <= keys[i];
     varying |= keys[i] ^ keys[0];
   }
   if (in_order) return;
-  std::vector<Index> count(kBuckets);
+  std::vector<Index> count;  // [thread][bucket]
   for (int shift = 0; shift < 64 && (varying >> shift) != 0;) {
     while (((varying >> shift) & 1u) == 0) ++shift;  // next bit in which keys differ
-    std::fill(count.begin(), count.end(), 0);
-    for (Index i = 0; i < n; ++i) ++count[(keys[i] >> shift) & (kBuckets - 1)];
-    Index offset = 0;
-    for (std::size_t b = 0; b < kBuckets; ++b) {
-      const Index k = count[b];
-      count[b] = offset;
-      offset += k;
-    }
-    for (Index i = 0; i < n; ++i) {
-      const Index dst = count[(keys[i] >> shift) & (kBuckets - 1)]++;
-      keys_out[dst] = keys[i];
-      values_out[dst] = values[i];
+#pragma omp parallel if (n >= kSerialBelow)
+    {
+      const int threads = omp_get_num_threads(), t = omp_get_thread_num();
+#pragma omp single
+      count.assign(std::size_t(threads) * kBuckets, 0);
+      Index* mine = count.data() + std::size_t(t) * kBuckets;
+      const Index begin = chunk_begin(n, t, threads), end = chunk_begin(n, t + 1, threads);
+      for (Index i = begin; i < end; ++i) ++mine[(keys[i] >> shift) & (kBuckets - 1)];
+#pragma omp barrier
+#pragma omp single
+      {
+        Index offset = 0;
+        for (std::size_t b = 0; b < kBuckets; ++b)
+          for (int u = 0; u < threads; ++u) {
+            Index& k = count[std::size_t(u) * kBuckets + b];
+            const Index here = k;
+            k = offset;
+            offset += here;
+          }
+      }
+      for (Index i = begin; i < end; ++i) {
+        const Index dst = mine[(keys[i] >> shift) & (kBuckets - 1)]++;
+        keys_out[dst] = keys[i];
+        values_out[dst] = values[i];
+      }
     }
     std::swap(keys, keys_out);
     std::swap(values, values_out);

@@ -1,0 +1,55 @@
+// The CPU backend's radix sort of (cell, id) keys against std::sort, for
+// sizes below and above the threshold where threads join in, keys already in
+// order, and keys that differ in only a few bits.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+
+#include "backend/cpu/cpu_exec.hpp"
+
+namespace gs {
+namespace {
+
+void expect_sorted_like_std(const std::vector<std::uint64_t>& keys) {
+  const Index n = Index(keys.size());
+  CellList c(Backend::cpu);
+  c.keys.from_host(keys);
+  c.keys_alt.resize(keys.size());
+  std::vector<Index> order(keys.size());
+  std::iota(order.begin(), order.end(), 0);
+  c.sorted.from_host(order);
+  c.sorted_alt.resize(keys.size());
+  CpuExec::sort_pairs(c, n);
+  std::sort(order.begin(), order.end(), [&](Index a, Index b) { return keys[std::size_t(a)] < keys[std::size_t(b)]; });
+  std::vector<std::uint64_t> want(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) want[i] = keys[std::size_t(order[i])];
+  EXPECT_EQ(c.keys.to_host(), want) << "n = " << n;
+  EXPECT_EQ(c.sorted.to_host(), order) << "n = " << n;
+}
+
+// Unique keys as the cell list builds them: cell << 32 | id.
+std::vector<std::uint64_t> cell_keys(std::size_t n, std::uint64_t cells, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<std::uint64_t> k(n);
+  for (std::size_t i = 0; i < n; ++i) k[i] = ((rng() % cells) << 32) | std::uint64_t(i);
+  std::shuffle(k.begin(), k.end(), rng);
+  return k;
+}
+
+TEST(CpuSort, MatchesStdSort) {
+  for (std::size_t n : {0, 1, 2, 100, 4095, 4096, 5000, 200003}) expect_sorted_like_std(cell_keys(n, 70000, 7));
+  // Keys that differ in the id only, and in the top cell bits only.
+  expect_sorted_like_std(cell_keys(50000, 1, 8));
+  std::vector<std::uint64_t> top = cell_keys(50000, 4, 9);
+  for (auto& k : top) k = (k & 0xFFFFFFFF00000000ull) << 29 | (k & 0xFFFFFFFFull);
+  expect_sorted_like_std(top);
+  // Already in order: nothing moves.
+  std::vector<std::uint64_t> sorted = cell_keys(30000, 1000, 10);
+  std::sort(sorted.begin(), sorted.end());
+  expect_sorted_like_std(sorted);
+}
+
+}  // namespace
+}  // namespace gs
