@@ -152,16 +152,8 @@ struct ForceKernel {
   GS_HD void add_mesh_contact(Index i, const Vec3d& xi, const MeshContact& c, int slot, ContactLoad<Real>& total,
                               unsigned& touched) const {
     const MeshPose& pose = meshes.pose[c.mesh];
-    ContactKinematics<Real> k;
-    k.overlap = Real(c.overlap);
-    k.normal = Vec3<Real>(c.normal);
-    const Real ri = radius[i];
-    k.lever = ri - k.overlap;
-    const Vec3<Real> wi(angular_velocity[i]);
-    k.velocity = Vec3<Real>(velocity[i] - c.wall_velocity) - cross(wi * k.lever, k.normal);
-    k.angular_velocity = wi - Vec3<Real>(pose.angular_velocity);
-    k.effective_mass = mass[i];
-    k.effective_radius = ri;
+    const ContactKinematics<Real> k =
+        surface_kinematics(i, c.overlap, c.normal, c.wall_velocity, pose.angular_velocity);
     const ContactLoad<Real> load = apply(i, mesh_partner_id(c.feature_key),
                                          pairs(material[i], meshes.material[c.mesh]), k, total, touched, slot);
     if (mesh_load) {
@@ -196,19 +188,31 @@ struct ForceKernel {
     apply(i, id[j], pairs(material[i], material[j]), k, total, touched);
   }
 
-  GS_HD void add_wall_contact(Index i, int w, const Vec3d& xi, ContactLoad<Real>& total, unsigned& touched) const {
-    WallContact wc;
-    if (!wall_contact(walls[w], xi, double(radius[i]), wc)) return;
+  // Particle i against a rigid surface (an analytic wall or a mesh feature)
+  // whose material moves at surface_velocity at the contact point and turns
+  // at surface_angular_velocity: the surface acts as a partner of infinite
+  // mass and radius.
+  GS_HD ContactKinematics<Real> surface_kinematics(Index i, double overlap, const Vec3d& normal,
+                                                   const Vec3d& surface_velocity,
+                                                   const Vec3d& surface_angular_velocity) const {
     ContactKinematics<Real> k;
-    k.overlap = Real(wc.overlap);
-    k.normal = Vec3<Real>(wc.normal);
+    k.overlap = Real(overlap);
+    k.normal = Vec3<Real>(normal);
     const Real ri = radius[i];
     k.lever = ri - k.overlap;
     const Vec3<Real> wi(angular_velocity[i]);
-    k.velocity = Vec3<Real>(velocity[i] - wc.wall_velocity) - cross(wi * k.lever, k.normal);
-    k.angular_velocity = wi - Vec3<Real>(walls[w].angular_velocity);
+    k.velocity = Vec3<Real>(velocity[i] - surface_velocity) - cross(wi * k.lever, k.normal);
+    k.angular_velocity = wi - Vec3<Real>(surface_angular_velocity);
     k.effective_mass = mass[i];
     k.effective_radius = ri;
+    return k;
+  }
+
+  GS_HD void add_wall_contact(Index i, int w, const Vec3d& xi, ContactLoad<Real>& total, unsigned& touched) const {
+    WallContact wc;
+    if (!wall_contact(walls[w], xi, double(radius[i]), wc)) return;
+    const ContactKinematics<Real> k =
+        surface_kinematics(i, wc.overlap, wc.normal, wc.wall_velocity, walls[w].angular_velocity);
     apply(i, kWallPartnerBase + ParticleId(w), pairs(material[i], walls[w].material), k, total, touched);
   }
 
