@@ -28,6 +28,8 @@ left=$((limit - ($(date +%s) - start) - 40))
 echo "build took $(($(date +%s) - start)) s; running for $left s"
 for scene in "$@"; do
   name=$(basename "$scene" .yaml)
+  # A checkpoint carried from an earlier machine (carry/seed/NAME/) starts an absent run.
+  if [[ ! -d $runs/$name && -d carry/seed/$name ]]; then mkdir -p "$runs/$name" && cp carry/seed/$name/* "$runs/$name/"; fi
   bench/mixer_long.sh build-gpu/src/grainstorm "cases/mixer/$scene" "$runs/$name" "$left" cuda &
 done
 wait
@@ -46,4 +48,14 @@ for scene in "$@"; do
   ((${#snaps[@]} > 2)) && python3 tools/render_topview.py "${snaps[-1]}" -o "$pack/${name}_last.png" --size 800 > /dev/null
 done
 tar czf "$OUT/mixruns.tar.gz" -C "$pack" .
+# KEEP_CHECKPOINTS=1: the newest checkpoint of each unfinished run comes back
+# too, to be carried to the next machine as carry/seed/NAME/.
+if [[ ${KEEP_CHECKPOINTS:-0} == 1 ]]; then
+  for scene in "$@"; do
+    name=$(basename "$scene" .yaml)
+    grep -q '^done:' "$runs/$name/pieces.log" && continue
+    last=$(ls "$runs/$name"/checkpoint_*.h5 2>/dev/null | sort | tail -1)
+    [[ -n $last ]] && tar czf "$OUT/seed_$name.tar.gz" -C "$runs/$name" "$(basename "$last")"
+  done
+fi
 ls -la "$OUT"
