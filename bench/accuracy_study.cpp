@@ -1,5 +1,5 @@
-// What accuracy costs in time: runs reference scenes over a grid of force
-// precision x time step (fraction of the contact time) x contact model and
+// What accuracy costs in time: runs reference scenes over a grid of
+// precision (fp32 forces, fp64, fp32 throughout) x time step (fraction of the contact time) x contact model and
 // prints, per point, the error against a fp64, small-step reference of the
 // same model and the wall time (CSV on stdout; bench/plot_accuracy.py draws
 // error against wall time). Scenes:
@@ -213,7 +213,7 @@ int main(int argc, char** argv) {
       // Reference: fp64 forces and a fifth of the smallest step of the grid;
       // the gas's own error is its drift, measured against zero.
       const Measure ref = run({model, Precision::fp64, 0.005}, backend);
-      for (Precision precision : {Precision::fp32, Precision::fp64})
+      for (Precision precision : {Precision::fp32, Precision::fp64, Precision::fp32_full})
         for (double fraction : {0.025, 0.05, 0.1, 0.2}) {
           const Measure m = run({model, precision, fraction}, backend);
           const double error = name == "gas" ? m.values[0] : relative_error(m.values, ref.values);
@@ -221,7 +221,7 @@ int main(int argc, char** argv) {
           for (double x : m.values) values << x << ";";
           std::printf("%s,%s,%s,%s,%g,%.4g,%.4g,%s\n", backend_name(backend), name.c_str(),
                       model == ContactModel::linear ? "linear" : "hertz",
-                      precision == Precision::fp64 ? "fp64" : "fp32", fraction, m.wall, error, values.str().c_str());
+                      precision_name(precision), fraction, m.wall, error, values.str().c_str());
           std::fflush(stdout);
         }
     }

@@ -20,6 +20,9 @@ def pareto(points):
     return front
 
 
+COLOURS = {"fp32": "tab:blue", "fp64": "tab:red", "fp32_full": "tab:green"}
+
+
 def main():
     rows = [r for r in csv.DictReader(open(sys.argv[1])) if r.get("scene") not in (None, "", "scene")]
     out = sys.argv[2]
@@ -30,14 +33,14 @@ def main():
         front = pareto(points)
         fig, ax = plt.subplots(figsize=(6.4, 4.8))
         for p in points:
-            colour = "tab:blue" if p["precision"] == "fp32" else "tab:red"
+            colour = COLOURS[p["precision"]]
             marker = "o" if p["model"] == "linear" else "s"
             ax.scatter(p["wall"], p["error"], c=colour, marker=marker, edgecolors="k" if p in front else "none")
             ax.annotate(p["fraction"], (p["wall"], p["error"]), fontsize=7, xytext=(3, 3), textcoords="offset points")
         ax.plot([p["wall"] for p in front], [p["error"] for p in front], "k--", lw=0.8, label="Pareto front")
-        for label, c, m in (("fp32 linear", "tab:blue", "o"), ("fp64 linear", "tab:red", "o"),
-                            ("fp32 Hertz", "tab:blue", "s"), ("fp64 Hertz", "tab:red", "s")):
-            ax.scatter([], [], c=c, marker=m, label=label)
+        for precision, c in COLOURS.items():
+            for model, m in (("linear", "o"), ("Hertz", "s")):
+                ax.scatter([], [], c=c, marker=m, label=f"{precision} {model}")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("wall time [s]")

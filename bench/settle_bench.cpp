@@ -4,7 +4,7 @@
 // contacts (close to the coordination number of a settled bed) and the
 // contact count stays steady while the benchmark times it.
 //
-//   settle_bench [--n N] [--steps S] [--backend cpu|cuda] [--precision fp32|fp64]
+//   settle_bench [--n N] [--steps S] [--backend cpu|cuda] [--precision fp32|fp64|fp32_full]
 //                [--effects none|friction|rolling|cohesion] [--model linear|hertz]
 //                [--mesh impeller]   (the seed's impeller turning at 30 rpm in the bed)
 #include <chrono>
@@ -32,6 +32,12 @@ struct Options {
   bool mesh = false;  // the seed's impeller turning at 30 rpm in the bed
 };
 
+gs::Precision parse_precision(const std::string& s) {
+  for (gs::Precision p : {gs::Precision::fp32, gs::Precision::fp64, gs::Precision::fp32_full})
+    if (s == gs::precision_name(p)) return p;
+  throw std::invalid_argument("--precision must be fp32, fp64 or fp32_full");
+}
+
 unsigned parse_effects(const std::string& s) {
   if (s == "none") return 0;
   if (s == "friction") return gs::kFriction;
@@ -49,7 +55,7 @@ Options parse(int argc, char** argv) {
     if (a == "--n") o.n = std::stoll(v);
     else if (a == "--steps") o.steps = std::stoll(v);
     else if (a == "--backend") o.backend = gs::parse_backend(v);
-    else if (a == "--precision") o.precision = v == "fp64" ? gs::Precision::fp64 : gs::Precision::fp32;
+    else if (a == "--precision") o.precision = parse_precision(v);
     else if (a == "--effects") o.effects = parse_effects(v);
     else if (a == "--model") o.model = v == "hertz" ? gs::ContactModel::hertz_mindlin : gs::ContactModel::linear;
     else if (a == "--mesh") o.mesh = v == "impeller";
@@ -141,7 +147,7 @@ int main(int argc, char** argv) {
     std::printf("backend=%s n=%zu mesh=%s precision=%s effects=%u model=%s steps=%lld wall_s=%.3f "
                 "particle_steps_per_s=%.4g peak_bytes_per_particle=%.1f held_bytes_per_particle=%.1f "
                 "integrate_s=%.3f neighbours_s=%.3f forces_s=%.3f\n",
-                gs::backend_name(o.backend), scene.particles.size(), o.mesh ? "impeller" : "none", o.precision == gs::Precision::fp64 ? "fp64" : "fp32", o.effects,
+                gs::backend_name(o.backend), scene.particles.size(), o.mesh ? "impeller" : "none", gs::precision_name(o.precision), o.effects,
                 o.model == gs::ContactModel::linear ? "linear" : "hertz", o.steps, wall, rate, bytes,
                 double(sim.device_bytes()) / n, t.integrate, t.neighbours, t.forces);
     return 0;

@@ -25,6 +25,7 @@ int command_check(const std::vector<std::string>& args) {
   std::printf("scene %s is valid\n", args[1].c_str());
   std::printf("particles:      %zu\n", scene.particles.size());
   std::printf("walls:          %zu\n", scene.walls.size());
+  std::printf("precision:      %s\n", precision_name(scene.precision));
   std::printf("contact time:   %.6g s\n", scene.contact_time);
   std::printf("time step:      %.6g s (%.4g of the contact time)\n", scene.time_step,
               scene.time_step / scene.contact_time);

@@ -30,7 +30,16 @@ enum Effect : unsigned {
 constexpr unsigned kAllEffects = kFriction | kRollingResistance | kCohesion;
 
 enum class ContactModel { linear, hertz_mindlin };
-enum class Precision { fp32, fp64 };  // precision of force arithmetic
+// Precision of a run: fp32 forces with fp64 state (the default), fp64
+// forces, or fp32 throughout (positions and velocities rounded to fp32 after
+// every update, as a code that stores them in fp32; docs/PHYSICS.md).
+enum class Precision { fp32, fp64, fp32_full };
+
+inline bool fp32_forces(Precision p) { return p != Precision::fp64; }
+inline bool fp32_state(Precision p) { return p == Precision::fp32_full; }
+inline const char* precision_name(Precision p) {
+  return p == Precision::fp64 ? "fp64" : p == Precision::fp32 ? "fp32" : "fp32_full";
+}
 
 inline bool uses_history(unsigned effects) { return (effects & (kFriction | kRollingResistance)) != 0; }
 

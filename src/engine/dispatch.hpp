@@ -30,7 +30,7 @@ std::unique_ptr<StepKernels> dispatch_model(const KernelChoice& c, const PairTab
 
 template <class Exec>
 std::unique_ptr<StepKernels> dispatch_step_kernels(const KernelChoice& c, const PairTableHost& t, int slots) {
-  if (c.precision == Precision::fp32) return dispatch_model<Exec, float>(c, t, slots);
+  if (fp32_forces(c.precision)) return dispatch_model<Exec, float>(c, t, slots);
   return dispatch_model<Exec, double>(c, t, slots);
 }
 

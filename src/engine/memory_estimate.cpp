@@ -7,7 +7,7 @@
 namespace gs {
 
 MemoryEstimate estimate_memory(const SceneSpec& scene) {
-  const double real = scene.precision == Precision::fp32 ? 4 : 8;
+  const double real = fp32_forces(scene.precision) ? 4 : 8;
   // id, material, marker, radius, mass, inertia, position, velocity, angular velocity, orientation
   double per = 4 + 1 + 1 + 3 * 4 + 3 * 24 + 16;
   per += 3 * real;                                        // force

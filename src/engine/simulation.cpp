@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "scene/position_resolution.hpp"
 #include "walls/wall_motion.hpp"
 
 namespace gs {
@@ -60,6 +61,7 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
 }
 
 void Simulation::set_up(const SceneSpec& scene) {
+  if (const std::string problem = fp32_state_problem(scene); !problem.empty()) throw std::invalid_argument(problem);
   const Backend b = options_.backend;
   store_.backend = b;
   for (auto* a : {&store_.radius, &store_.mass, &store_.inertia}) *a = DeviceArray<float>(b);
@@ -149,6 +151,11 @@ void Simulation::upload(const std::vector<ParticleInit>& particles) {
     position[i] = p.position;
     velocity[i] = p.velocity;
     angular_velocity[i] = p.angular_velocity;
+    if (fp32_state(scene_.precision)) {
+      position[i] = on_fp32_grid(position[i]);
+      velocity[i] = on_fp32_grid(velocity[i]);
+      angular_velocity[i] = on_fp32_grid(angular_velocity[i]);
+    }
   }
   store_.id.from_host(id);
   store_.material.from_host(material);
@@ -209,7 +216,8 @@ void Simulation::rebuild_cells() { kernels_->build_cell_list(store_, grid_); }
 void Simulation::run(long long steps) {
   const auto start = Clock::now();
   const double dt = scene_.time_step;
-  IntegrationParams p{dt, scene_.gravity, scene_.domain_min, scene_.domain_max, 0.5 * grid_.cell_size, 0};
+  IntegrationParams p{dt, scene_.gravity, scene_.domain_min, scene_.domain_max, 0.5 * grid_.cell_size, 0,
+                      fp32_state(scene_.precision)};
   for (long long s = 0; s < steps; ++s) {
     // A timed step starts with an idle device, so it is charged only its own work.
     if (step_ % kTimedEvery == 0) kernels_->synchronize();
@@ -241,7 +249,7 @@ void Simulation::run(long long steps) {
     kernels_->compute_forces(store_, dt, p.step);
     timings_.forces += phase_seconds(t0);
     t0 = Clock::now();
-    kernels_->kick(store_, dt, scene_.gravity);
+    kernels_->kick(store_, p);
     timings_.integrate += phase_seconds(t0);
     ++step_;
     time_ = double(step_) * dt;

@@ -38,7 +38,7 @@ class StepKernels {
   virtual void kick_drift(ParticleStore& s, const IntegrationParams& p) = 0;
   virtual void build_cell_list(ParticleStore& s, const CellGrid& grid) = 0;
   virtual void compute_forces(ParticleStore& s, double dt, long long step) = 0;
-  virtual void kick(ParticleStore& s, double dt, const Vec3d& gravity) = 0;
+  virtual void kick(ParticleStore& s, const IntegrationParams& p) = 0;
   // Sets the marker of each owned particle by its side of the plane.
   virtual void mark_by_plane(ParticleStore& s, const MarkingSpec& m) = 0;
   // Reorders owned particles, and their history, by the last cell list.

@@ -67,13 +67,13 @@ class StepKernelsImpl final : public StepKernels {
   void set_mesh_bins(const MeshBins& bins) override { meshes_.set_bins(bins); }
 
   void kick_drift(ParticleStore& s, const IntegrationParams& p) override {
-    KickDrift<Real> f{half_kick(s, 0.5 * p.dt, p.gravity), s.position.data(), s.orientation.data(), s.id.data(), p,
+    KickDrift<Real> f{half_kick(s, p), s.position.data(), s.orientation.data(), s.id.data(), p,
                       fault_.data()};
     Exec::parallel_for(s.n_owned, f);
   }
 
-  void kick(ParticleStore& s, double dt, const Vec3d& gravity) override {
-    Exec::parallel_for(s.n_owned, half_kick(s, 0.5 * dt, gravity));
+  void kick(ParticleStore& s, const IntegrationParams& p) override {
+    Exec::parallel_for(s.n_owned, half_kick(s, p));
   }
 
   void build_cell_list(ParticleStore& s, const CellGrid& grid) override {
@@ -137,10 +137,10 @@ class StepKernelsImpl final : public StepKernels {
  private:
   // What a message of `count` particles carries from this run.
   MessageHeader message_header(Index count, bool with_history) const;
-  HalfKick<Real> half_kick(ParticleStore& s, double half_dt, const Vec3d& gravity) {
+  HalfKick<Real> half_kick(ParticleStore& s, const IntegrationParams& p) {
     return HalfKick<Real>{s.velocity.data(), s.angular_velocity.data(), forces_.force.data(),
-                          kTorque ? forces_.torque.data() : nullptr, s.mass.data(), s.inertia.data(), half_dt,
-                          gravity};
+                          kTorque ? forces_.torque.data() : nullptr, s.mass.data(), s.inertia.data(), 0.5 * p.dt,
+                          p.gravity, p.fp32_state};
   }
   SlotTable<Real, Effects> slot_table() {
     return SlotTable<Real, Effects>{history_.partner.data(), history_.tangential.data(), history_.rolling.data(),

@@ -17,7 +17,13 @@ struct IntegrationParams {
   Vec3d domain_lo, domain_hi;
   double max_displacement;  // per step; half a cell
   long long step;
+  bool fp32_state;  // precision fp32_full: the state is kept on the fp32 grid
 };
+
+// The nearest fp32 values: what a code that stores the state in fp32 keeps.
+GS_HD GS_INLINE Vec3d on_fp32_grid(const Vec3d& v) {
+  return Vec3d(double(float(v.x)), double(float(v.y)), double(float(v.z)));
+}
 
 GS_HD GS_INLINE void advance_orientation(Quaternion& q, const Vec3d& omega, double dt) {
   const float hx = float(0.5 * dt * omega.x), hy = float(0.5 * dt * omega.y), hz = float(0.5 * dt * omega.z);
@@ -38,10 +44,15 @@ struct HalfKick {
   const float* inertia;
   double half_dt;
   Vec3d gravity;
+  bool fp32_state;
 
   GS_HD void operator()(Index i) const {
     velocity[i] += (Vec3d(force[i]) * (1.0 / double(mass[i])) + gravity) * half_dt;
     if (torque) angular_velocity[i] += Vec3d(torque[i]) * (half_dt / double(inertia[i]));
+    if (fp32_state) {
+      velocity[i] = on_fp32_grid(velocity[i]);
+      angular_velocity[i] = on_fp32_grid(angular_velocity[i]);
+    }
   }
 };
 
@@ -62,6 +73,7 @@ struct KickDrift {
     const Vec3d step = v * p.dt;
     Vec3d& x = position[i];
     x += step;
+    if (p.fp32_state) x = on_fp32_grid(x);
     advance_orientation(orientation[i], kick.angular_velocity[i], p.dt);
     if (!(std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(v.x) &&
           std::isfinite(v.y) && std::isfinite(v.z))) {

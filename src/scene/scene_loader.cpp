@@ -8,6 +8,7 @@
 #include "contact/contact_time.hpp"
 #include "io/snapshot_fields.hpp"
 #include "scene/generators.hpp"
+#include "scene/position_resolution.hpp"
 #include "scene/scene_sections.hpp"
 
 namespace gs {
@@ -43,8 +44,10 @@ void parse_globals(const Map& top, SceneSpec& s) {
   if (top.has("contact_model"))
     s.model = choice(top.get("contact_model"), {"linear", "hertz_mindlin"}) == "linear" ? ContactModel::linear
                                                                                         : ContactModel::hertz_mindlin;
-  if (top.has("precision"))
-    s.precision = choice(top.get("precision"), {"fp32", "fp64"}) == "fp32" ? Precision::fp32 : Precision::fp64;
+  if (top.has("precision")) {
+    const std::string p = choice(top.get("precision"), {"fp32", "fp64", "fp32_full"});
+    s.precision = p == "fp64" ? Precision::fp64 : p == "fp32" ? Precision::fp32 : Precision::fp32_full;
+  }
   if (top.has("effects")) {
     const Map e(top.get("effects"), {"friction", "rolling_resistance", "cohesion"});
     const std::pair<const char*, Effect> bits[] = {
@@ -194,6 +197,7 @@ SceneSpec parse_scene(const std::string& yaml_text, const std::string& source) {
   parse_particles(top, s);
   parse_pairs(top, s);
   resolve_time_step(top, s);
+  if (const std::string problem = fp32_state_problem(s); !problem.empty()) fail(top.get("precision"), problem);
   parse_analysis(top, s);
   parse_marking(top, s);
   return s;

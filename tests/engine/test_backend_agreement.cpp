@@ -92,7 +92,7 @@ TEST(BackendAgreement, CpuAndCudaTrajectoriesAgree) {
   // of k delta dt / m ~ 1e-2 m/s) moves spheres by ~1e-5 m.
   for (const auto& [precision, tolerance] :
        {std::pair{Precision::fp64, 1e-9 * kRadiusMin}, std::pair{Precision::fp32, 1e-4 * kRadiusMin}}) {
-    SCOPED_TRACE(precision == Precision::fp64 ? "fp64" : "fp32");
+    SCOPED_TRACE(precision_name(precision));
     const SceneSpec scene = settling_scene(precision);
     const ParticleSnapshot cpu = run_on(Backend::cpu, scene, 1000);
     const ParticleSnapshot cuda = run_on(Backend::cuda, scene, 1000);

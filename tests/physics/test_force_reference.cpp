@@ -96,7 +96,7 @@ class ForceReferenceTest : public testing::TestWithParam<Backend> {};
 // missed by the search shows as an error of its whole force.
 TEST_P(ForceReferenceTest, ForcesMatchBruteForceSum) {
   for (const auto& [precision, tolerance] : {std::pair{Precision::fp64, 1e-12}, std::pair{Precision::fp32, 1e-5}}) {
-    SCOPED_TRACE(precision == Precision::fp64 ? "fp64" : "fp32");
+    SCOPED_TRACE(precision_name(precision));
     const SceneSpec scene = packing_scene(precision);
     const Simulation sim(scene, {GetParam()});  // computes the forces at t = 0
     const ParticleSnapshot s = sim.snapshot();

@@ -40,7 +40,7 @@ class RestingTest : public testing::TestWithParam<Backend> {};
 // to rest with k delta = m g.
 TEST_P(RestingTest, SettlesAtStaticOverlap) {
   for (const Precision precision : {Precision::fp64, Precision::fp32}) {
-    SCOPED_TRACE(precision == Precision::fp64 ? "fp64" : "fp32");
+    SCOPED_TRACE(precision_name(precision));
     const SceneSpec scene = resting_scene(precision, kRadius);
     Simulation sim(scene, {GetParam()});
     sim.run(std::llround(0.02 / scene.time_step));
@@ -63,7 +63,7 @@ TEST_P(RestingTest, SettlesAtStaticOverlap) {
 // fp32), both far below the bound.
 TEST_P(RestingTest, StaysPutFor1e5Steps) {
   for (const Precision precision : {Precision::fp64, Precision::fp32}) {
-    SCOPED_TRACE(precision == Precision::fp64 ? "fp64" : "fp32");
+    SCOPED_TRACE(precision_name(precision));
     const SceneSpec scene = resting_scene(precision, kRadius - static_overlap());
     Simulation sim(scene, {GetParam()});
     const Vec3d start = scene.particles[0].position;

@@ -277,6 +277,20 @@ TEST(SceneLoaderErrors, BadDomainAndAxis) {
                13, "walls[0].motion.rotation.axis", "zero vector");
 }
 
+// fp32_full keeps positions in fp32: accepted where fp32 resolves a
+// thousandth of the smallest radius (1 mm here), refused at the `precision`
+// key where it does not (fp32 spacing 6.1e-5 m at 1000 m).
+TEST(SceneLoader, Fp32FullPrecision) {
+  EXPECT_EQ(parse_scene(kGood + "precision: fp32_full\n", "scene.yaml").precision, Precision::fp32_full);
+  EXPECT_EQ(parse_scene(kGood + "precision: fp64\n", "scene.yaml").precision, Precision::fp64);
+  expect_error(edit("max: [0.1, 0.1, 0.1]}", "max: [1000, 0.1, 0.1]}") + "precision: fp32_full\n", 20, "precision",
+               "fp32 positions are 6.1e-05 m apart");
+  EXPECT_EQ(parse_scene(edit("max: [0.1, 0.1, 0.1]}", "max: [1000, 0.1, 0.1]}") + "precision: fp32\n", "scene.yaml")
+                .precision,
+            Precision::fp32);
+  expect_error(kGood + "precision: fp16\n", 20, "precision", "fp32_full");
+}
+
 TEST(SceneLoaderErrors, TimeStepAboveStabilityLimit) {
   const std::string msg = error_of(edit("{fraction_of_contact_time: 0.1}", "{absolute: 0.001}"));
   EXPECT_EQ(msg.rfind("scene.yaml:17: time_step: time step 0.001 s exceeds the stability limit", 0), 0u) << msg;

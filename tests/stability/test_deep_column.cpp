@@ -58,7 +58,7 @@ TEST_P(StabilityDeepColumnTest, StaysAtStaticLoad) {
   const int count = short_or_long(200, 1000);
   const long long steps = short_or_long(20000LL, 200000LL);
   for (const auto& [precision, tolerance] : {std::pair{Precision::fp64, 1e-8}, std::pair{Precision::fp32, 1e-5}}) {
-    SCOPED_TRACE(precision == Precision::fp64 ? "fp64" : "fp32");
+    SCOPED_TRACE(precision_name(precision));
     const SceneSpec scene = column_scene(count, precision);
     const double bottom = count * weight() / kStiffness;  // wall overlap
     const double omega0 = std::sqrt(kStiffness / stored_sphere_mass(kRadius, kDensity));

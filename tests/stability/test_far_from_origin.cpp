@@ -13,6 +13,7 @@
 #include <cmath>
 
 #include "contact/contact_time.hpp"
+#include "scene/position_resolution.hpp"
 #include "stability/stability_checks.hpp"
 
 namespace gs::test {
@@ -72,7 +73,7 @@ TEST_P(StabilityFarFromOriginTest, FarBedMatchesBedAtOrigin) {
     const ParticleSnapshot near = near_sim.snapshot();
     ASSERT_EQ(expect_healthy(near, near_scene, near_sim.walls()), 0);
     for (const double shift : {1e3, 1e5}) {
-      SCOPED_TRACE(std::string(precision == Precision::fp64 ? "fp64" : "fp32") + ", shift " + std::to_string(shift));
+      SCOPED_TRACE(std::string(precision_name(precision)) + ", shift " + std::to_string(shift));
       const SceneSpec far_scene = lattice_bed(shift, precision, per_side, layers);
       Simulation far_sim(far_scene, {GetParam()});
       const Vec3d floor(shift, shift, shift);
@@ -91,12 +92,56 @@ TEST_P(StabilityFarFromOriginTest, FarBedMatchesBedAtOrigin) {
       const double velocity_bound = 2 * bound * std::sqrt(2 * kStiffness / stored_sphere_mass(kRadius, kDensity));
       std::printf("[ measured ] %s, shift %.0e m, %lld steps: position difference %.3g m (bound %.3g m), velocity "
                   "difference %.3g m/s (bound %.3g m/s), energy growth %.3g E0, max overlap %.4f R\n",
-                  precision == Precision::fp64 ? "fp64" : "fp32", shift, steps, position_error, bound,
+                  precision_name(precision), shift, steps, position_error, bound,
                   velocity_error, velocity_bound, r.energy_growth, r.overlap.worst());
       EXPECT_LT(position_error, bound);
       EXPECT_LT(velocity_error, velocity_bound);
       EXPECT_LT(r.energy_growth, 1e-3);
       EXPECT_LT(r.overlap.worst(), 0.01);
+    }
+  }
+}
+
+// Precision fp32_full (state kept in fp32, as the seed): the bed at the
+// origin stays healthy, its state stays on the fp32 grid, and it follows the
+// fp32-forces run within N fp32 spacings of its largest coordinate (each
+// drift rounds once, by the same argument as above); 2000 steps at 0.015 m:
+// 1.9e-6 m, measured 5e-10 m on the CPU. At 1e3 m and 1e5 m the fp32
+// spacings (6.1e-5 m, 7.8e-3 m) exceed a thousandth of the radius, so the run
+// is refused before it starts.
+TEST_P(StabilityFarFromOriginTest, Fp32StateHealthyAtOriginRefusedFarFromIt) {
+  const int per_side = short_or_long(4, 30), layers = short_or_long(6, 20);
+  const long long steps = short_or_long(2000LL, 20000LL);
+  const SceneSpec fp32_scene = lattice_bed(0, Precision::fp32, per_side, layers);
+  const SceneSpec full_scene = lattice_bed(0, Precision::fp32_full, per_side, layers);
+  Simulation fp32_sim(fp32_scene, {GetParam()}), full_sim(full_scene, {GetParam()});
+  fp32_sim.run(steps);
+  const double e0 = mechanical_energy(full_sim.snapshot(), full_scene.gravity, Vec3d());
+  const RunRecord r = run_and_watch(full_sim, 10, steps / 10, e0, Vec3d());
+  ASSERT_EQ(r.failures, 0);
+  const ParticleSnapshot fp32 = fp32_sim.snapshot(), full = full_sim.snapshot();
+  ASSERT_EQ(expect_healthy(full, full_scene, full_sim.walls()), 0);
+  auto on_grid = [](const Vec3d& v) {
+    return double(float(v.x)) == v.x && double(float(v.y)) == v.y && double(float(v.z)) == v.z;
+  };
+  double difference = 0;
+  for (std::size_t i = 0; i < full.size(); ++i) {
+    ASSERT_TRUE(on_grid(full.position[i]) && on_grid(full.velocity[i])) << "particle " << full.id[i];
+    difference = std::max(difference, norm(full.position[i] - fp32.position[i]));
+  }
+  const double bound = double(steps) * fp32_spacing(full_scene.domain_max.z);
+  std::printf("[ measured ] fp32_full at the origin, %lld steps: %.3g m from the fp32-forces run (bound %.3g m), "
+              "energy growth %.3g E0, max overlap %.4f R\n", steps, difference, bound, r.energy_growth,
+              r.overlap.worst());
+  EXPECT_LT(difference, bound);
+  EXPECT_LT(r.energy_growth, 1e-3);
+  EXPECT_LT(r.overlap.worst(), 0.01);
+  for (const double shift : {1e3, 1e5}) {
+    try {
+      Simulation far(lattice_bed(shift, Precision::fp32_full, per_side, layers), {GetParam()});
+      ADD_FAILURE() << "fp32_full at " << shift << " m was not refused";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("precision fp32_full"), std::string::npos) << e.what();
     }
   }
 }
