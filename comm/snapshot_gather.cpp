@@ -25,6 +25,7 @@ void for_each_field(ParticleSnapshot& s, F&& f) {
   f(s.force);
   f(s.torque);
   f(s.orientation);
+  f(s.contacts);
 }
 
 Bytes pack(ParticleSnapshot s) {
@@ -84,26 +85,33 @@ HostHistory gather_history(Transport& transport, const std::vector<ParticleId>& 
   ParticleRecords mine;
   mine.id = local_ids;
   mine.history = local;
+  return gather_history_records(transport, mine).history;
+}
+
+ParticleRecords gather_history_records(Transport& transport, const ParticleRecords& local) {
+  if (transport.size() == 1) return local;
   Bytes bytes;
-  encode_records(mine, bytes);
+  encode_records(local, bytes);
   ParticleRecords all;
   for (const Bytes& b : transport.gather(bytes)) append_records(all, decode_records(b));
-  HostHistory out;
-  out.slots = local.slots;
+  ParticleRecords out;
+  out.history.slots = local.history.slots;
   if (transport.rank() != 0) return out;
   std::vector<std::size_t> order(all.size());
   std::iota(order.begin(), order.end(), std::size_t(0));
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all.id[a] < all.id[b]; });
-  const std::size_t k = std::size_t(out.slots);
+  const std::size_t k = std::size_t(out.history.slots);
   auto rows = [&](const auto& from, auto& to) {
     if (from.empty()) return;
     to.resize(from.size());
     for (std::size_t r = 0; r < order.size(); ++r)
       for (std::size_t s = 0; s < k; ++s) to[r * k + s] = from[order[r] * k + s];
   };
-  rows(all.history.partner, out.partner);
-  rows(all.history.tangential, out.tangential);
-  rows(all.history.rolling, out.rolling);
+  out.id.resize(order.size());
+  for (std::size_t r = 0; r < order.size(); ++r) out.id[r] = all.id[order[r]];
+  rows(all.history.partner, out.history.partner);
+  rows(all.history.tangential, out.history.tangential);
+  rows(all.history.rolling, out.history.rolling);
   return out;
 }
 

@@ -11,5 +11,8 @@ ParticleSnapshot gather_snapshot(Transport& transport, const ParticleSnapshot& l
 // Collective. The contact history of every particle on rank 0, in id order;
 // `local` is in the order of `local_ids`.
 HostHistory gather_history(Transport& transport, const std::vector<ParticleId>& local_ids, const HostHistory& local);
+// Collective. Every rank's ids and history rows (local.id, local.history) on
+// rank 0, sorted by id.
+ParticleRecords gather_history_records(Transport& transport, const ParticleRecords& local);
 
 }  // namespace gs

@@ -23,15 +23,6 @@ std::FILE* open_for_append(const std::string& path) {
   return f;
 }
 
-// Contacts per particle from the history (particle-particle and wall).
-std::vector<std::uint16_t> contact_counts(const HostHistory& h, std::size_t n) {
-  std::vector<std::uint16_t> c(n, 0);
-  if (h.slots == 0) return c;
-  for (std::size_t i = 0; i < n; ++i)
-    for (int s = 0; s < h.slots; ++s) c[i] += h.partner[i * std::size_t(h.slots) + std::size_t(s)] != kNoPartner;
-  return c;
-}
-
 }  // namespace
 
 RunOutput::RunOutput(const SceneSpec& scene, const std::string& directory, Transport& transport,
@@ -87,9 +78,10 @@ void RunOutput::snapshot(const Simulation& sim) {
   const ParticleSnapshot local = sim.snapshot();
   const ParticleSnapshot s = gather_snapshot(transport_, local);
   const bool need_history = uses_history(scene_.effects);
-  const HostHistory h = need_history ? gather_history(transport_, local.id, sim.history()) : HostHistory();
+  const ParticleRecords on_walls =
+      need_history ? gather_history_records(transport_, sim.wall_contact_history()) : ParticleRecords();
   if (transport_.rank() != 0) return;
-  const std::vector<std::uint16_t> contacts = contact_counts(h, s.size());
+  const std::vector<std::uint16_t> contacts = need_history ? s.contacts : std::vector<std::uint16_t>(s.size(), 0);
   if (scene_.output.format == "csv") {
     write_particles_csv(directory_ + "/" + snapshot_file_name(s.step), s);
   } else {
@@ -120,7 +112,7 @@ void RunOutput::snapshot(const Simulation& sim) {
   }
   std::fprintf(timeseries_, "%lld,%.17g,%zu,%.17g,%.17g,%.17g,%lld", s.step, s.time, s.size(), translational,
                rotational, max_speed, need_history ? n_contacts : -1LL);
-  for (const MeshLoad& l : wall_loads(scene_, sim.walls(), s, h))
+  for (const MeshLoad& l : wall_loads(scene_, sim.walls(), s, on_walls))
     for (double x : {l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y, l.torque.z})
       std::fprintf(timeseries_, ",%.17g", x);
   for (double x : mesh_load) std::fprintf(timeseries_, ",%.17g", x);

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <type_traits>
 
 #include "scene/position_resolution.hpp"
 #include "walls/wall_motion.hpp"
@@ -25,6 +26,23 @@ template <class T>
 std::vector<T> permuted(const std::vector<T>& v, const std::vector<std::size_t>& order) {
   std::vector<T> out(order.size());
   for (std::size_t k = 0; k < order.size(); ++k) out[k] = v[order[k]];
+  return out;
+}
+
+// History row r of the result is row order[r] of h.
+HostHistory rows_permuted(const HostHistory& h, const std::vector<std::size_t>& order) {
+  const std::size_t k = std::size_t(h.slots);
+  auto rows = [&](const auto& from) {
+    std::decay_t<decltype(from)> to(from.empty() ? 0 : order.size() * k);
+    for (std::size_t r = 0; r < order.size() && !from.empty(); ++r)
+      for (std::size_t s = 0; s < k; ++s) to[r * k + s] = from[order[r] * k + s];
+    return to;
+  };
+  HostHistory out;
+  out.slots = h.slots;
+  out.partner = rows(h.partner);
+  out.tangential = rows(h.tangential);
+  out.rolling = rows(h.rolling);
   return out;
 }
 
@@ -317,29 +335,31 @@ ParticleSnapshot Simulation::snapshot() const {
   s.orientation = permuted(owned(store_.orientation.to_host()), order);
   s.force = permuted(kernels_->forces(store_), order);
   s.torque = permuted(kernels_->torques(store_), order);
+  if (uses_history(scene_.effects)) s.contacts = permuted(kernels_->contact_counts(store_), order);
   return s;
+}
+
+ParticleRecords Simulation::wall_contact_history() const {
+  kernels_->synchronize();
+  const ParticleRecords r = kernels_->wall_contact_history(store_);
+  std::vector<std::size_t> order(r.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return r.id[a] < r.id[b]; });
+  ParticleRecords out;
+  out.id = permuted(r.id, order);
+  out.history = rows_permuted(r.history, order);
+  return out;
 }
 
 HostHistory Simulation::history() const {
   HostHistory h = kernels_->history(store_);
   if (h.partner.empty()) return h;
   const std::vector<ParticleId> id = store_.id.to_host();
-  const std::size_t n = std::size_t(store_.n_owned), k = std::size_t(h.slots);
+  const std::size_t n = std::size_t(store_.n_owned);
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t(0));
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
-  HostHistory out;
-  out.slots = h.slots;
-  out.partner.resize(n * k);
-  out.tangential.resize(n * k);
-  out.rolling.resize(n * k);
-  for (std::size_t r = 0; r < n; ++r)
-    for (std::size_t s = 0; s < k; ++s) {
-      out.partner[r * k + s] = h.partner[order[r] * k + s];
-      out.tangential[r * k + s] = h.tangential[order[r] * k + s];
-      out.rolling[r * k + s] = h.rolling[order[r] * k + s];
-    }
-  return out;
+  return rows_permuted(h, order);
 }
 
 std::size_t Simulation::device_bytes() const {

@@ -27,6 +27,7 @@ struct ParticleSnapshot {
   std::vector<float> radius, mass, inertia;
   std::vector<Vec3d> position, velocity, angular_velocity, force, torque;
   std::vector<Quaternion> orientation;
+  std::vector<std::uint16_t> contacts;  // occupied history slots; empty without history
   std::size_t size() const { return id.size(); }
 };
 
@@ -75,6 +76,8 @@ class Simulation {
 
   ParticleSnapshot snapshot() const;  // this rank's owned particles
   HostHistory history() const;  // in snapshot (id) order
+  // Ids (ascending) and history of the particles with a stored wall contact.
+  ParticleRecords wall_contact_history() const;
   std::size_t device_bytes() const;
   // Wall time in run() per phase: the total is measured, its split over the
   // phases is that of the timed steps (every kTimedEvery-th, see phase_seconds).

@@ -51,6 +51,12 @@ class StepKernels {
   virtual std::vector<Vec3d> forces(const ParticleStore& s) const = 0;
   virtual std::vector<Vec3d> torques(const ParticleStore& s) const = 0;
   virtual HostHistory history(const ParticleStore& s) const = 0;
+  // Contacts of each owned particle (occupied history slots, store order);
+  // all zero without history. Output needs these, not the whole history.
+  virtual std::vector<std::uint16_t> contact_counts(const ParticleStore& s) const = 0;
+  // Ids and history rows (store order) of the owned particles with a stored
+  // contact on an analytic wall: what the wall loads need of the history.
+  virtual ParticleRecords wall_contact_history(const ParticleStore& s) const = 0;
   // Load of each owned particle (store order) on each mesh, entry
   // i * n_meshes + m, from the last force computation; empty without meshes.
   virtual std::vector<MeshLoad> particle_mesh_loads(const ParticleStore& s) const = 0;

@@ -19,6 +19,33 @@ struct Gather {
   GS_HD void operator()(Index k) const { to[k] = from[order[k]]; }
 };
 
+// Occupied history slots of particle i.
+struct CountContacts {
+  const ParticleId* partner;
+  HistoryStrides strides;
+  int slots;
+  std::uint16_t* count;
+  GS_HD void operator()(Index i) const {
+    unsigned c = 0;
+    for (int k = 0; k < slots; ++k) c += partner[strides.at(k, std::size_t(i))] != kNoPartner;
+    count[i] = std::uint16_t(c);
+  }
+};
+
+// Whether particle i has a stored contact on an analytic wall.
+struct TouchesWall {
+  const ParticleId* partner;
+  HistoryStrides strides;
+  int slots;
+  GS_HD bool operator()(Index i) const {
+    for (int k = 0; k < slots; ++k) {
+      const ParticleId p = partner[strides.at(k, std::size_t(i))];
+      if (p >= kWallPartnerBase && p != kNoPartner) return true;
+    }
+    return false;
+  }
+};
+
 // Marker by side of a plane: front where (x - point) . normal >= 0.
 struct MarkByPlane {
   const Vec3d* position;
@@ -110,6 +137,8 @@ class StepKernelsImpl final : public StepKernels {
     return widen(forces_.torque, s.n_owned);
   }
   HostHistory history(const ParticleStore& s) const override;
+  std::vector<std::uint16_t> contact_counts(const ParticleStore& s) const override;
+  ParticleRecords wall_contact_history(const ParticleStore& s) const override;
   std::vector<MeshLoad> particle_mesh_loads(const ParticleStore& s) const override {
     if (meshes_.n_triangles == 0) return {};
     std::vector<MeshLoad> h = meshes_.load.to_host();

@@ -131,6 +131,14 @@ HostHistory StepKernelsImpl<Exec, Real, Model, Effects>::history(const ParticleS
 }
 
 template <class Exec, class Real, ContactModel Model, unsigned Effects>
+std::vector<std::uint16_t> StepKernelsImpl<Exec, Real, Model, Effects>::contact_counts(const ParticleStore& s) const {
+  if (!kHistory) return std::vector<std::uint16_t>(std::size_t(s.n_owned), 0);
+  DeviceArray<std::uint16_t> count(Exec::backend, std::size_t(s.n_owned));
+  Exec::parallel_for(s.n_owned, CountContacts{history_.partner.data(), history_.strides, history_.slots, count.data()});
+  return count.to_host();
+}
+
+template <class Exec, class Real, ContactModel Model, unsigned Effects>
 void StepKernelsImpl<Exec, Real, Model, Effects>::set_history(const ParticleStore& s, const HostHistory& h) {
   if (!kHistory) return;
   if (h.slots != history_.slots)

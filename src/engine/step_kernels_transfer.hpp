@@ -60,6 +60,20 @@ void gather_history_into(const DeviceArray<T>& a, const DeviceArray<Index>& whic
   Exec::parallel_for(Index(slots) * m, GatherHistory<T>{a.data(), reinterpret_cast<T*>(to), which.data(), strides, m});
 }
 
+// Rows i * slots + s of a packed slot-major block of m particles.
+template <class T>
+std::vector<T> slot_major_to_rows(const std::vector<T>& block, int slots, std::size_t m) {
+  std::vector<T> rows(block.size());
+  for (std::size_t i = 0; i < m; ++i)
+    for (std::size_t s = 0; s < std::size_t(slots); ++s) rows[i * std::size_t(slots) + s] = block[s * m + i];
+  return rows;
+}
+
+template <class Real>
+std::vector<Vec3d> widened(const std::vector<Vec3<Real>>& v) {
+  return std::vector<Vec3d>(v.begin(), v.end());
+}
+
 template <class T>
 struct CopyTo {
   const T* from;
@@ -230,6 +244,44 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::append(ParticleStore& s, const
   };
   if constexpr ((Effects & kFriction) != 0) narrow_springs(h.tangential, history_.tangential);
   if constexpr ((Effects & kRollingResistance) != 0) narrow_springs(h.rolling, history_.rolling);
+}
+
+// Selected and gathered on the backend, so only the particles on a wall
+// cross to the host: the whole history is some 500 bytes per particle there.
+template <class Exec, class Real, ContactModel Model, unsigned Effects>
+ParticleRecords StepKernelsImpl<Exec, Real, Model, Effects>::wall_contact_history(const ParticleStore& s) const {
+  ParticleRecords r;
+  r.history.slots = history_.slots;
+  if (!kHistory || s.n_owned == 0) return r;
+  DeviceArray<Index> which(Exec::backend, std::size_t(s.n_owned));
+  const Index m = Exec::select(s.n_owned, TouchesWall{history_.partner.data(), history_.strides, history_.slots},
+                               which.data(), staging_);
+  which.resize(std::size_t(m));
+  if (m == 0) return r;
+  DeviceArray<unsigned char> block(Exec::backend);
+  auto fetch = [&](const auto& field, auto& rows) {
+    using T = typename std::decay_t<decltype(field)>::value_type;
+    block.resize(std::size_t(m) * sizeof(T) * std::size_t(history_.slots));
+    gather_history_into<Exec>(field, which, history_.slots, history_.strides, block.data());
+    std::vector<T> packed(std::size_t(m) * std::size_t(history_.slots));
+    backend_copy_to_host(Exec::backend, packed.data(), block.data(), packed.size() * sizeof(T));
+    rows = slot_major_to_rows(packed, history_.slots, std::size_t(m));
+  };
+  block.resize(std::size_t(m) * sizeof(ParticleId));
+  gather_into<Exec>(s.id, which, block.data());
+  r.id.resize(std::size_t(m));
+  backend_copy_to_host(Exec::backend, r.id.data(), block.data(), r.id.size() * sizeof(ParticleId));
+  fetch(history_.partner, r.history.partner);
+  std::vector<Vec3<Real>> springs;
+  if (Effects & kFriction) {
+    fetch(history_.tangential, springs);
+    r.history.tangential = widened(springs);
+  }
+  if (Effects & kRollingResistance) {
+    fetch(history_.rolling, springs);
+    r.history.rolling = widened(springs);
+  }
+  return r;
 }
 
 }  // namespace gs

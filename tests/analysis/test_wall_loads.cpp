@@ -16,13 +16,13 @@ namespace {
 
 constexpr double kRadius = 0.0009765625, kDensity = 2500, kStiffness = 1000, kGravity = 9.81;
 
-TEST(WallLoads, WallsTogetherCarryTheSettledPile) {
+// 48 spheres dropped into a box of five planes; torques about an off-centre point.
+SceneSpec pile_in_box(const Vec3d& centre) {
   SceneSpec scene = base_scene(kDensity, kStiffness, 0.1, 0.5);
   scene.effects = kFriction;
   scene.domain_min = {-0.006, -0.006, -0.001};
   scene.domain_max = {0.006, 0.006, 0.02};
   scene.gravity = {0, 0, -kGravity};
-  const Vec3d centre{-0.002, 0.001, 0};  // torques about an off-centre point
   scene.walls = {plane_wall({0, 0, 0}, {0, 0, 1}), plane_wall({-0.005, 0, 0}, {1, 0, 0}),
                  plane_wall({0.005, 0, 0}, {-1, 0, 0}), plane_wall({0, -0.005, 0}, {0, 1, 0}),
                  plane_wall({0, 0.005, 0}, {0, -1, 0})};
@@ -33,12 +33,18 @@ TEST(WallLoads, WallsTogetherCarryTheSettledPile) {
       for (int i = 0; i < 4; ++i)
         scene.particles.push_back(particle(id++, kRadius, {-0.003 + 0.002 * i + 0.0001 * k, -0.003 + 0.002 * j,
                                                            kRadius * (1.2 + 2.4 * k)}));
+  scene.time_step = linear_contact_time(kStiffness, stored_sphere_mass(kRadius, kDensity) / 2, 0.1) / 30;
+  return scene;
+}
+
+TEST(WallLoads, WallsTogetherCarryTheSettledPile) {
+  const Vec3d centre{-0.002, 0.001, 0};
+  const SceneSpec scene = pile_in_box(centre);
   const double m = stored_sphere_mass(kRadius, kDensity);
-  scene.time_step = linear_contact_time(kStiffness, m / 2, 0.1) / 30;
   Simulation sim(scene, {Backend::cpu});
   sim.run(std::llround(0.5 / scene.time_step));
   const ParticleSnapshot s = sim.snapshot();
-  const std::vector<MeshLoad> loads = wall_loads(scene, sim.walls(), s, sim.history());
+  const std::vector<MeshLoad> loads = wall_loads(scene, sim.walls(), s, sim.wall_contact_history());
   const double weight = m * kGravity * double(s.size());
   ASSERT_LT(std::sqrt(2 * kinetic_energy(s) / (m * double(s.size()))), 1e-4) << "the pile has not settled";
   Vec3d force, torque;
@@ -77,10 +83,53 @@ TEST(WallLoads, StickingSphereOnInclineCarriesFriction) {
   sim.run(std::llround(0.1 / scene.time_step));
   const ParticleSnapshot s = sim.snapshot();
   ASSERT_LT(norm(s.velocity[0]), 1e-5);
-  const std::vector<MeshLoad> loads = wall_loads(scene, sim.walls(), s, sim.history());
+  const std::vector<MeshLoad> loads = wall_loads(scene, sim.walls(), s, sim.wall_contact_history());
   EXPECT_NEAR(loads[0].force.z / (-m * kGravity * std::cos(theta)), 1.0, 1e-3);
   EXPECT_NEAR(loads[0].force.x / (m * kGravity * std::sin(theta)), 1.0, 1e-2);
 }
+
+// Output reads contact counts and the springs of wall contacts from the
+// backend instead of the whole history: both must be what the whole history
+// says, on every backend, in the middle of the settling (contacts changing).
+class HistoryDigestTest : public testing::TestWithParam<Backend> {};
+
+TEST_P(HistoryDigestTest, CountsAndWallSpringsMatchTheWholeHistory) {
+  const SceneSpec scene = pile_in_box({0, 0, 0});
+  Simulation sim(scene, {GetParam()});
+  sim.run(std::llround(0.1 / scene.time_step));
+  const ParticleSnapshot s = sim.snapshot();
+  const HostHistory all = sim.history();
+  const ParticleRecords on_walls = sim.wall_contact_history();
+  const std::size_t k = std::size_t(all.slots);
+  ASSERT_EQ(s.contacts.size(), s.size());
+  ASSERT_EQ(on_walls.history.slots, all.slots);
+  std::size_t touching = 0, contacts = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    int count = 0;
+    bool wall = false;
+    for (std::size_t j = 0; j < k; ++j) {
+      const ParticleId p = all.partner[i * k + j];
+      count += p != kNoPartner;
+      wall = wall || (p >= kWallPartnerBase && p != kNoPartner);
+    }
+    EXPECT_EQ(int(s.contacts[i]), count) << "particle " << s.id[i];
+    contacts += std::size_t(count);
+    if (!wall) continue;
+    ASSERT_LT(touching, on_walls.size());
+    EXPECT_EQ(on_walls.id[touching], s.id[i]);
+    for (std::size_t j = 0; j < k; ++j) {
+      EXPECT_EQ(on_walls.history.partner[touching * k + j], all.partner[i * k + j]);
+      const Vec3d a = on_walls.history.tangential[touching * k + j], b = all.tangential[i * k + j];
+      EXPECT_TRUE(a.x == b.x && a.y == b.y && a.z == b.z) << "particle " << s.id[i] << " slot " << j;
+    }
+    ++touching;
+  }
+  EXPECT_EQ(touching, on_walls.size());
+  EXPECT_GT(touching, 10u) << "the test needs particles on the walls";
+  EXPECT_GT(contacts, s.size()) << "the test needs contacts";
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, HistoryDigestTest, testing::ValuesIn(test_backends()), backend_label);
 
 }  // namespace
 }  // namespace gs::test
