@@ -137,7 +137,7 @@ struct ForceKernel {
     MeshContact waiting[kWaitingMeshContacts];
     int n_waiting = 0;
     MeshContactVisitor visit{this, i, xi, &total, &touched, waiting, &n_waiting};
-    for_each_mesh_contact(meshes, grid, xi, double(radius[i]), visit);
+    for_each_mesh_contact(meshes, xi, double(radius[i]), visit);
     for (int k = 0; k < n_waiting; ++k) {
       const MeshContact& c = waiting[k];
       const int slot = history.inherit(i, mesh_partner_id(c.feature_key), touched, SameMeshContact{&meshes, c.feature_key});

@@ -1,8 +1,8 @@
 #pragma once
 // The scene's triangle meshes in a backend's memory, and the per-particle
-// loads on them (walls/mesh.hpp has the layout). Topology and materials are
-// uploaded once, vertices and poses every step the meshes move, bins when they
-// are rebinned. Empty, and never read by a kernel, when the scene has none.
+// loads on them (walls/mesh.hpp has the layout). Topology, reference vertices,
+// materials and bins are uploaded once; every step the meshes move, kernels
+// pose the vertices from the reference (StepKernelsImpl::set_mesh_pose). Empty, and never read by a kernel, when the scene has none.
 #include <vector>
 
 #include "backend/device_array.hpp"
@@ -12,10 +12,11 @@ namespace gs {
 
 struct DeviceMeshes {
   explicit DeviceMeshes(Backend b)
-      : vertex(b), corners(b), edges(b), edge_ends(b), owned(b), mesh(b), pose(b), material(b), crease_cos(b),
-        cell_begin(b), cell_triangles(b), load(b) {}
+      : reference(b), vertex(b), corners(b), edges(b), edge_ends(b), owned(b), mesh(b), pose(b), material(b),
+        crease_cos(b), bin_grid(b), bin_first_cell(b), cell_begin(b), cell_triangles(b), load(b) {}
 
-  DeviceArray<Vec3d> vertex;
+  DeviceArray<Vec3d> reference;  // per vertex, reference pose
+  DeviceArray<Vec3d> vertex;     // per vertex, current pose
   DeviceArray<MeshCorners> corners;
   DeviceArray<MeshEdges> edges;
   DeviceArray<EdgeEnds> edge_ends;
@@ -24,6 +25,8 @@ struct DeviceMeshes {
   DeviceArray<MeshPose> pose;
   DeviceArray<std::int32_t> material;
   DeviceArray<double> crease_cos;
+  DeviceArray<CellGrid> bin_grid;
+  DeviceArray<std::int64_t> bin_first_cell;
   DeviceArray<std::int32_t> cell_begin, cell_triangles;
   DeviceArray<MeshLoad> load;  // per particle x mesh
   std::int32_t n_triangles = 0, n_meshes = 0;
@@ -38,13 +41,13 @@ struct DeviceMeshes {
     mesh.from_host(s.mesh);
     material.from_host(s.material);
     crease_cos.from_host(s.crease_cos);
-    set_pose(s);
-  }
-  void set_pose(const MeshSet& s) {
+    reference.from_host(s.reference);
     vertex.from_host(s.vertex);
     pose.from_host(s.pose);
   }
   void set_bins(const MeshBins& b) {
+    bin_grid.from_host(b.grid);
+    bin_first_cell.from_host(b.first_cell);
     cell_begin.from_host(b.cell_begin);
     cell_triangles.from_host(b.triangles);
   }
@@ -67,6 +70,8 @@ struct DeviceMeshes {
     v.crease_cos = crease_cos.data();
     v.n_triangles = n_triangles;
     v.n_meshes = n_meshes;
+    v.bin_grid = bin_grid.data();
+    v.bin_first_cell = bin_first_cell.data();
     v.cell_begin = cell_begin.data();
     v.cell_triangles = cell_triangles.data();
     return v;
@@ -74,8 +79,9 @@ struct DeviceMeshes {
   MeshLoad* loads() { return n_triangles > 0 ? load.data() : nullptr; }
 
   std::size_t bytes() const {
-    return vertex.bytes() + corners.bytes() + edges.bytes() + edge_ends.bytes() + owned.bytes() + mesh.bytes() +
-           pose.bytes() + material.bytes() + crease_cos.bytes() + cell_begin.bytes() + cell_triangles.bytes() +
+    return reference.bytes() + vertex.bytes() + corners.bytes() + edges.bytes() + edge_ends.bytes() + owned.bytes() + mesh.bytes() +
+           pose.bytes() + material.bytes() + crease_cos.bytes() + bin_grid.bytes() +
+           bin_first_cell.bytes() + cell_begin.bytes() + cell_triangles.bytes() +
            load.bytes();
   }
 };

@@ -101,11 +101,11 @@ void Simulation::set_up(const SceneSpec& scene) {
       throw std::runtime_error("the scene's meshes have more than 2^28 triangles, edges or vertices");
     for (const MeshMotion& m : meshes_.motion)
       meshes_move_ = meshes_move_ || norm2(m.velocity) > 0 || norm2(m.angular_velocity) > 0;
-    // Binning reach r_max + skin; a skin of a fifth of the largest radius
-    // rebins a mesh turning at 30 rpm with a 5 cm tip (0.16 m/s) every few
-    // hundred microseconds for millimetre grains (docs/MESHES.md).
-    mesh_skin_ = meshes_move_ ? 0.1 * grid_.cell_size : 0.0;
     kernels_->set_meshes(meshes_);
+    // Bins in each mesh's own frame: binned once, whatever the motion. Reach
+    // half a cell (>= the largest radius), with room for the rounding of a
+    // position carried into the mesh's frame.
+    kernels_->set_mesh_bins(bin_triangles(meshes_, grid_.cell_size, {0.5 * grid_.cell_size * (1 + 1e-9)}));
   }
 }
 
@@ -195,20 +195,11 @@ void Simulation::move_walls(double t) {
   kernels_->set_walls(walls_);
 }
 
-// Poses from the absolute time; rebins once some vertex has moved more than
-// the skin since the last binning (bins reach r_max + skin, so every triangle
-// within a particle's radius stays in the list of its cell until then).
+// Poses from the absolute time, on the host (for output) and on the backend.
 void Simulation::pose_meshes(double t) {
   if (meshes_.n_triangles() == 0) return;
   move_meshes(meshes_, t);
   kernels_->set_mesh_pose(meshes_);
-  bool rebin = binned_vertex_.empty();
-  const double skin2 = mesh_skin_ * mesh_skin_;
-  for (std::size_t v = 0; v < binned_vertex_.size() && !rebin; ++v)
-    rebin = norm2(meshes_.vertex[v] - binned_vertex_[v]) > skin2;
-  if (!rebin) return;
-  kernels_->set_mesh_bins(bin_triangles(meshes_, grid_, {0.5 * grid_.cell_size + mesh_skin_}));
-  binned_vertex_ = meshes_.vertex;
 }
 
 std::vector<MeshLoad> Simulation::mesh_loads() const {

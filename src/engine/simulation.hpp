@@ -105,8 +105,6 @@ class Simulation {
   bool walls_move_ = false;
   MeshSet meshes_;
   bool meshes_move_ = false;
-  double mesh_skin_ = 0;               // rebin when a vertex has moved further than this
-  std::vector<Vec3d> binned_vertex_;   // vertices at the last binning
   double time_ = 0;
   long long step_ = 0;
   StepTimings timings_;  // sampled: the timed steps' phases

@@ -90,7 +90,14 @@ class StepKernelsImpl final : public StepKernels {
     meshes_.reserve(forces_.force.size());
     meshes_.load.zero();
   }
-  void set_mesh_pose(const MeshSet& meshes) override { meshes_.set_pose(meshes); }
+  void set_mesh_pose(const MeshSet& meshes) override {
+    for (std::int32_t m = 0; m < meshes.n_meshes(); ++m) {
+      const std::int32_t begin = meshes.vertex_begin[m], end = meshes.vertex_begin[m + 1];
+      Exec::parallel_for(Index(end - begin), PoseVertices{meshes.pose[m], meshes_.reference.data(),
+                                                          meshes_.vertex.data(), std::size_t(begin)});
+      Exec::parallel_for(1, SetPose{meshes.pose[m], meshes_.pose.data() + m});
+    }
+  }
   void set_mesh_bins(const MeshBins& bins) override { meshes_.set_bins(bins); }
 
   void kick_drift(ParticleStore& s, const IntegrationParams& p) override {

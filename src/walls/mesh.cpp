@@ -106,11 +106,11 @@ namespace {
 // Calls visit(cell) for every cell the triangle is binned in, in ascending
 // linear order (z, then y, then x).
 template <class Visit>
-void for_each_binned_cell(const MeshSet& set, std::int32_t t, const CellGrid& grid, const BinningOptions& o,
-                          Visit&& visit) {
-  const Vec3d& a = set.vertex[set.corners[t].v[0]];
-  const Vec3d& b = set.vertex[set.corners[t].v[1]];
-  const Vec3d& c = set.vertex[set.corners[t].v[2]];
+void for_each_binned_cell(const MeshSet& set, const Vec3d* vertex, std::int32_t t, const CellGrid& grid,
+                          const BinningOptions& o, Visit&& visit) {
+  const Vec3d& a = vertex[set.corners[t].v[0]];
+  const Vec3d& b = vertex[set.corners[t].v[1]];
+  const Vec3d& c = vertex[set.corners[t].v[2]];
   const Vec3d lo(std::min({a.x, b.x, c.x}) - o.reach, std::min({a.y, b.y, c.y}) - o.reach,
                  std::min({a.z, b.z, c.z}) - o.reach);
   const Vec3d hi(std::max({a.x, b.x, c.x}) + o.reach, std::max({a.y, b.y, c.y}) + o.reach,
@@ -129,29 +129,55 @@ void for_each_binned_cell(const MeshSet& set, std::int32_t t, const CellGrid& gr
       }
 }
 
+// One grid over the reference vertices of mesh m, inflated by the reach.
+CellGrid mesh_grid(const MeshSet& set, std::int32_t m, double cell_size, double reach) {
+  Vec3d lo(std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+           std::numeric_limits<double>::infinity());
+  Vec3d hi = lo * -1.0;
+  for (std::int32_t v = set.vertex_begin[m]; v < set.vertex_begin[m + 1]; ++v) {
+    const Vec3d& x = set.reference[v];
+    lo = Vec3d(std::min(lo.x, x.x), std::min(lo.y, x.y), std::min(lo.z, x.z));
+    hi = Vec3d(std::max(hi.x, x.x), std::max(hi.y, x.y), std::max(hi.z, x.z));
+  }
+  // A little more than the reach: a point exactly at it still falls inside.
+  const double margin = reach * (1 + 1e-9) + 1e-12;
+  const Vec3d pad(margin, margin, margin);
+  return make_cell_grid(lo - pad, hi + pad, cell_size);
+}
+
 }  // namespace
 
-MeshBins bin_triangles(const MeshSet& set, const CellGrid& grid, const BinningOptions& options) {
+MeshBins bin_triangles(const MeshSet& set, double cell_size, const BinningOptions& options) {
   if (!(options.reach >= 0)) throw std::invalid_argument("mesh binning reach must be >= 0");
-  const std::int64_t cells = grid.cell_count();
   MeshBins bins;
+  bins.first_cell.push_back(0);
+  for (std::int32_t m = 0; m < set.n_meshes(); ++m) {
+    bins.grid.push_back(mesh_grid(set, m, cell_size, options.reach));
+    bins.first_cell.push_back(bins.first_cell.back() + bins.grid.back().cell_count());
+  }
+  const std::int64_t cells = bins.first_cell.back();
   bins.cell_begin.assign(std::size_t(cells) + 1, 0);
   // Counting sort: count per cell, prefix sums, then fill in triangle order,
   // which leaves every cell's list ascending.
+  auto for_each_entry = [&](auto&& visit) {
+    for (std::int32_t t = 0; t < set.n_triangles(); ++t) {
+      const std::int32_t m = set.mesh[t];
+      for_each_binned_cell(set, set.reference.data(), t, bins.grid[m], options,
+                           [&](std::int64_t cell) { visit(t, bins.first_cell[m] + cell); });
+    }
+  };
   std::int64_t total = 0;
-  for (std::int32_t t = 0; t < set.n_triangles(); ++t)
-    for_each_binned_cell(set, t, grid, options, [&](std::int64_t cell) {
-      ++bins.cell_begin[cell + 1];
-      ++total;
-    });
+  for_each_entry([&](std::int32_t, std::int64_t cell) {
+    ++bins.cell_begin[cell + 1];
+    ++total;
+  });
   if (total > std::numeric_limits<std::int32_t>::max())
     throw std::runtime_error("mesh binning: " + std::to_string(total) +
                              " (cell, triangle) entries exceed the 32-bit index range; use larger cells or a coarser mesh");
   for (std::int64_t c = 0; c < cells; ++c) bins.cell_begin[c + 1] += bins.cell_begin[c];
   bins.triangles.resize(std::size_t(total));
   std::vector<std::int32_t> fill(bins.cell_begin.begin(), bins.cell_begin.end() - 1);
-  for (std::int32_t t = 0; t < set.n_triangles(); ++t)
-    for_each_binned_cell(set, t, grid, options, [&](std::int64_t cell) { bins.triangles[fill[cell]++] = t; });
+  for_each_entry([&](std::int32_t t, std::int64_t cell) { bins.triangles[fill[cell]++] = t; });
   return bins;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // Triangle-mesh walls laid out for the kernels: flat arrays over all meshes of
 // a scene (a MeshSet on the host, a MeshView of plain pointers in a kernel),
-// and the binning of triangles into the cells of the particle CellGrid in CSR
-// form. Vertices are never shared between meshes, so every edge and vertex
+// and the binning of triangles into cell grids that move with their mesh, in
+// CSR form. Vertices are never shared between meshes, so every edge and vertex
 // belongs to one mesh. See docs/MESHES.md.
 #include <cstdint>
 #include <string>
@@ -46,13 +46,23 @@ struct MeshView {
   const double* crease_cos = nullptr;        // per mesh: cos(crease angle), rule F of sphere_triangle.hpp
   std::int32_t n_triangles = 0;
   std::int32_t n_meshes = 0;
-  // Binning (MeshBins) on the particle grid.
-  const std::int32_t* cell_begin = nullptr;  // per cell + 1: range in cell_triangles
+  // Binning (MeshBins): one grid per mesh, in its reference pose.
+  const CellGrid* bin_grid = nullptr;         // per mesh
+  const std::int64_t* bin_first_cell = nullptr;  // per mesh: its cells' first index in cell_begin
+  const std::int32_t* cell_begin = nullptr;   // per cell + 1: range in cell_triangles
   const std::int32_t* cell_triangles = nullptr;
 
-  // Triangles that may touch a sphere centred in the cell of x, ascending.
-  GS_HD void cell_range(const CellGrid& grid, const Vec3d& x, std::int32_t& begin, std::int32_t& end) const {
-    const std::int64_t cell = grid.linear(grid.coord(x));
+  // Triangles of mesh m that may touch a sphere centred at the world point
+  // x, ascending; an empty range where none can (x outside the mesh's grid).
+  GS_HD void cell_range(std::int32_t m, const Vec3d& x, std::int32_t& begin, std::int32_t& end) const {
+    const Vec3d r = pose_reference_point(pose[m], x);
+    const CellGrid& g = bin_grid[m];
+    const double f[3] = {(r.x - g.origin.x) * g.inverse_cell_size, (r.y - g.origin.y) * g.inverse_cell_size,
+                         (r.z - g.origin.z) * g.inverse_cell_size};
+    begin = end = 0;
+    for (int a = 0; a < 3; ++a)
+      if (!(f[a] >= 0 && f[a] < double(g.dims[a]))) return;
+    const std::int64_t cell = bin_first_cell[m] + g.linear({int(f[0]), int(f[1]), int(f[2])});
     begin = cell_begin[cell];
     end = cell_begin[cell + 1];
   }
@@ -116,32 +126,39 @@ std::int32_t add_mesh(MeshSet& set, const TriangleMesh& mesh, std::int32_t mater
 // vertices; nothing accumulates).
 void move_meshes(MeshSet& set, double time);
 
-// Triangles per cell of a CellGrid, CSR: the triangles of cell c are
-// triangles[cell_begin[c] .. cell_begin[c + 1]), ascending, so a kernel visits
-// them in one canonical order.
+// Triangles per cell, CSR, of one grid per mesh laid over the mesh in its
+// reference pose. A rigidly moving mesh is binned once and never again: a
+// particle is looked up at its position carried back into the reference
+// pose (MeshView::cell_range). The triangles of cell c of mesh m are
+// triangles[cell_begin[k] .. cell_begin[k + 1]), k = first_cell[m] + c,
+// ascending, so a kernel visits them in one canonical order.
 struct MeshBins {
-  std::vector<std::int32_t> cell_begin;  // grid.cell_count() + 1
+  std::vector<CellGrid> grid;              // per mesh
+  std::vector<std::int64_t> first_cell;    // per mesh + 1
+  std::vector<std::int32_t> cell_begin;    // first_cell.back() + 1
   std::vector<std::int32_t> triangles;
 };
 
 struct BinningOptions {
   // A triangle is listed in every cell that its axis-aligned bounding box,
   // inflated by `reach` on all sides, overlaps. Use reach >= the largest
-  // particle radius (+ a skin if the mesh is rebinned less often than it moves).
+  // particle radius. A mesh's grid covers its bounding box inflated by reach,
+  // so every point within reach of a triangle lies inside it.
   double reach = 0;
   // Also drop the cells whose centre is further than reach + the cell's
   // half-diagonal from the triangle: still conservative for every point inside
-  // the grid, much shorter lists for large slanted triangles (impeller
-  // blades). Points outside the grid, clamped to a border cell by
-  // CellGrid::coord, are only covered without pruning.
+  // the grid, much shorter lists for large slanted triangles (impeller blades).
   bool prune_by_distance = true;
 };
 
-// Bins the triangles of `set` in its current pose.
-MeshBins bin_triangles(const MeshSet& set, const CellGrid& grid, const BinningOptions& options);
+// Bins the triangles of `set` in their reference pose, in cells of edge
+// `cell_size` (the particle grid's: one cell per sphere diameter or more).
+MeshBins bin_triangles(const MeshSet& set, double cell_size, const BinningOptions& options);
 
 // Attaches bins to a view (host pointers).
 inline MeshView with_bins(MeshView v, const MeshBins& bins) {
+  v.bin_grid = bins.grid.data();
+  v.bin_first_cell = bins.first_cell.data();
   v.cell_begin = bins.cell_begin.data();
   v.cell_triangles = bins.triangles.data();
   return v;

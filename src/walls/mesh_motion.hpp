@@ -50,6 +50,15 @@ GS_HD GS_INLINE Vec3d pose_point(const MeshPose& p, const Vec3d& x_ref) {
   return pose_rotate(p, x_ref - p.axis_point) + p.axis_point + p.shift;
 }
 
+// The inverse of pose_point: where the world point x sits in the reference pose.
+GS_HD GS_INLINE Vec3d pose_reference_point(const MeshPose& p, const Vec3d& x) {
+  const double* R = p.rotation;
+  const Vec3d d = x - p.axis_point - p.shift;
+  return Vec3d(R[0] * d.x + R[3] * d.y + R[6] * d.z, R[1] * d.x + R[4] * d.y + R[7] * d.z,
+               R[2] * d.x + R[5] * d.y + R[8] * d.z) +
+         p.axis_point;
+}
+
 // Velocity of the mesh material at the world point x (e.g. a contact point):
 // v + omega x (x - c), c = the rotation centre where it is now.
 GS_HD GS_INLINE Vec3d mesh_point_velocity(const MeshPose& p, const Vec3d& x) {
@@ -64,6 +73,14 @@ struct PoseVertices {
   Vec3d* current;
   std::size_t begin;
   GS_HD void operator()(std::size_t k) const { current[begin + k] = pose_point(pose, reference[begin + k]); }
+};
+
+// Stores one mesh's pose where kernels read it (a launch, not a copy: a copy
+// from the host would wait for the device every step).
+struct SetPose {
+  MeshPose pose;
+  MeshPose* to;
+  GS_HD void operator()(std::size_t) const { *to = pose; }
 };
 
 void pose_vertices(const MeshPose& pose, const Vec3d* reference, Vec3d* current, std::size_t begin,

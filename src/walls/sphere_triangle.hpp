@@ -289,14 +289,17 @@ GS_HD void for_each_mesh_contact_in(const MeshView& m, const std::int32_t* list,
   }
 }
 
-// The same over the binned cell of x (MeshView::cell_begin/cell_triangles
-// built by bin_triangles on `grid` with reach >= radius).
+// The same over the binned cell of x in each mesh (bins from bin_triangles
+// with reach >= radius). Features never span two meshes, so each mesh's list
+// is complete for the rules above; meshes come in order, so contacts stay in
+// ascending triangle order.
 template <class Visitor>
-GS_HD void for_each_mesh_contact(const MeshView& m, const CellGrid& grid, const Vec3d& x, double radius,
-                                 Visitor& visit) {
-  std::int32_t begin, end;
-  m.cell_range(grid, x, begin, end);
-  for_each_mesh_contact_in(m, m.cell_triangles + begin, end - begin, x, radius, visit);
+GS_HD void for_each_mesh_contact(const MeshView& m, const Vec3d& x, double radius, Visitor& visit) {
+  for (std::int32_t k = 0; k < m.n_meshes; ++k) {
+    std::int32_t begin, end;
+    m.cell_range(k, x, begin, end);
+    if (end > begin) for_each_mesh_contact_in(m, m.cell_triangles + begin, end - begin, x, radius, visit);
+  }
 }
 
 }  // namespace gs

@@ -1,6 +1,7 @@
 // The device layout of meshes (edge numbering, feature ownership) and the
-// binning of triangles into the cells of a CellGrid (CSR, ascending lists),
-// checked against brute force.
+// binning of triangles into a cell grid per mesh in its reference pose (CSR,
+// ascending lists), checked against brute force in the reference pose and
+// in a moved one.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -64,21 +65,15 @@ TEST(MeshLayout, EdgesAndOwnership) {
   EXPECT_EQ(*impeller_edges.rbegin() + 1, std::int32_t(impeller_edges.size()));
 }
 
-bool inside_grid(const CellGrid& g, const Vec3d& x) {
-  const double f[3] = {(x.x - g.origin.x) / g.cell_size, (x.y - g.origin.y) / g.cell_size,
-                       (x.z - g.origin.z) / g.cell_size};
-  for (int a = 0; a < 3; ++a)
-    if (!(f[a] >= 0 && f[a] < g.dims[a])) return false;
-  return true;
-}
-
-// Brute force: cells overlapped by each triangle's inflated bounding box.
-std::vector<std::vector<std::int32_t>> brute_force_bins(const MeshSet& set, const CellGrid& grid, double reach) {
+// Brute force: cells of mesh m's grid overlapped by each of its triangles'
+// bounding boxes (reference pose) inflated by `reach`.
+std::vector<std::vector<std::int32_t>> brute_force_bins(const MeshSet& set, std::int32_t m, const CellGrid& grid,
+                                                        double reach) {
   std::vector<std::vector<std::int32_t>> cells(std::size_t(grid.cell_count()));
-  for (std::int32_t t = 0; t < set.n_triangles(); ++t) {
+  for (std::int32_t t = set.triangle_begin[m]; t < set.triangle_begin[m + 1]; ++t) {
     Vec3d lo(1e300, 1e300, 1e300), hi(-1e300, -1e300, -1e300);
     for (int k = 0; k < 3; ++k) {
-      const Vec3d x = set.vertex[set.corners[t].v[k]];
+      const Vec3d x = set.reference[set.corners[t].v[k]];
       lo = Vec3d(std::min(lo.x, x.x), std::min(lo.y, x.y), std::min(lo.z, x.z));
       hi = Vec3d(std::max(hi.x, x.x), std::max(hi.y, x.y), std::max(hi.z, x.z));
     }
@@ -86,44 +81,59 @@ std::vector<std::vector<std::int32_t>> brute_force_bins(const MeshSet& set, cons
       for (int y = 0; y < grid.dims[1]; ++y)
         for (int x = 0; x < grid.dims[0]; ++x) {
           const Vec3d c0 = grid.origin + Vec3d(x, y, z) * grid.cell_size, c1 = c0 + Vec3d(1, 1, 1) * grid.cell_size;
-          // Cells are half open [c0, c1); the last cell of an axis also takes what lies beyond it.
-          auto overlaps = [&](double l, double h, double a0, double a1, int i, int n) {
-            return (i == n - 1 || l - reach < a1) && (i == 0 || h + reach >= a0);
-          };
-          if (overlaps(lo.x, hi.x, c0.x, c1.x, x, grid.dims[0]) && overlaps(lo.y, hi.y, c0.y, c1.y, y, grid.dims[1]) &&
-              overlaps(lo.z, hi.z, c0.z, c1.z, z, grid.dims[2]))
+          // Cells are half open [c0, c1).
+          auto overlaps = [&](double l, double h, double a0, double a1) { return l - reach < a1 && h + reach >= a0; };
+          if (overlaps(lo.x, hi.x, c0.x, c1.x) && overlaps(lo.y, hi.y, c0.y, c1.y) && overlaps(lo.z, hi.z, c0.z, c1.z))
             cells[std::size_t(grid.linear({x, y, z}))].push_back(t);
         }
   }
   return cells;
 }
 
+std::vector<std::int32_t> cell_list(const MeshBins& bins, std::int64_t k) {
+  return std::vector<std::int32_t>(bins.triangles.begin() + bins.cell_begin[k],
+                                   bins.triangles.begin() + bins.cell_begin[k + 1]);
+}
+
+// Every triangle of any mesh binned near x (the union of the meshes' lists).
+std::set<std::int32_t> listed_near(const MeshView& view, const Vec3d& x) {
+  std::set<std::int32_t> listed;
+  for (std::int32_t m = 0; m < view.n_meshes; ++m) {
+    std::int32_t begin, end;
+    view.cell_range(m, x, begin, end);
+    listed.insert(view.cell_triangles + begin, view.cell_triangles + end);
+  }
+  return listed;
+}
+
 TEST(MeshBinning, BoundingBoxBinsMatchBruteForce) {
   const MeshSet set = two_mesh_set();
-  const CellGrid grid = make_cell_grid(Vec3d(-0.055, -0.05, -0.01), Vec3d(0.05, 0.052, 0.11), 0.0071);
   BinningOptions o;
   o.reach = 0.0015;
   o.prune_by_distance = false;
-  const MeshBins bins = bin_triangles(set, grid, o);
-  const auto brute = brute_force_bins(set, grid, o.reach);
-  ASSERT_EQ(bins.cell_begin.size(), std::size_t(grid.cell_count()) + 1);
+  const MeshBins bins = bin_triangles(set, 0.0071, o);
+  ASSERT_EQ(bins.grid.size(), 2u);
+  ASSERT_EQ(bins.cell_begin.size(), std::size_t(bins.first_cell.back()) + 1);
   EXPECT_EQ(bins.cell_begin.front(), 0);
   EXPECT_EQ(std::size_t(bins.cell_begin.back()), bins.triangles.size());
-  for (std::int64_t c = 0; c < grid.cell_count(); ++c) {
-    const std::vector<std::int32_t> list(bins.triangles.begin() + bins.cell_begin[c],
-                                         bins.triangles.begin() + bins.cell_begin[c + 1]);
-    EXPECT_TRUE(std::is_sorted(list.begin(), list.end()));
-    EXPECT_TRUE(std::adjacent_find(list.begin(), list.end()) == list.end());
-    EXPECT_EQ(list, brute[std::size_t(c)]) << "cell " << c;
+  for (std::int32_t m = 0; m < 2; ++m) {
+    const CellGrid& grid = bins.grid[std::size_t(m)];
+    EXPECT_EQ(bins.first_cell[m + 1] - bins.first_cell[m], grid.cell_count());
+    const auto brute = brute_force_bins(set, m, grid, o.reach);
+    for (std::int64_t c = 0; c < grid.cell_count(); ++c) {
+      const std::vector<std::int32_t> list = cell_list(bins, bins.first_cell[m] + c);
+      EXPECT_TRUE(std::is_sorted(list.begin(), list.end()));
+      EXPECT_TRUE(std::adjacent_find(list.begin(), list.end()) == list.end());
+      EXPECT_EQ(list, brute[std::size_t(c)]) << "mesh " << m << " cell " << c;
+    }
   }
 }
 
 TEST(MeshBinning, EveryTriangleInReachIsListedAndPruningOnlyDrops) {
   const MeshSet set = two_mesh_set();
   const double reach = 0.0011;
-  const CellGrid grid = make_cell_grid(Vec3d(-0.06, -0.06, -0.01), Vec3d(0.06, 0.06, 0.105), 2 * reach);
   BinningOptions full{reach, false}, pruned{reach, true};
-  const MeshBins a = bin_triangles(set, grid, full), b = bin_triangles(set, grid, pruned);
+  const MeshBins a = bin_triangles(set, 2 * reach, full), b = bin_triangles(set, 2 * reach, pruned);
   // The blades (the impeller's last 4 x 12 triangles) are large and slanted:
   // most cells of their bounding boxes are far from them.
   const std::int32_t blades_begin = set.triangle_begin[1] - 48, blades_end = set.triangle_begin[1];
@@ -133,10 +143,12 @@ TEST(MeshBinning, EveryTriangleInReachIsListedAndPruningOnlyDrops) {
   };
   EXPECT_LT(3 * blade_entries(b), blade_entries(a));
   EXPECT_LT(b.triangles.size(), a.triangles.size());
-  for (std::int64_t c = 0; c < grid.cell_count(); ++c)
+  ASSERT_EQ(a.first_cell, b.first_cell);
+  for (std::int64_t c = 0; c < a.first_cell.back(); ++c)
     EXPECT_TRUE(std::includes(a.triangles.begin() + a.cell_begin[c], a.triangles.begin() + a.cell_begin[c + 1],
                               b.triangles.begin() + b.cell_begin[c], b.triangles.begin() + b.cell_begin[c + 1]));
   // Random points near the surfaces: every triangle within reach is in the list.
+  const MeshView view = with_bins(set.view(), b);
   std::mt19937_64 rng(3);
   std::uniform_int_distribution<std::int32_t> pick(0, set.n_triangles() - 1);
   std::normal_distribution<double> jitter(0, reach);
@@ -145,55 +157,59 @@ TEST(MeshBinning, EveryTriangleInReachIsListedAndPruningOnlyDrops) {
     const MeshCorners& t = set.corners[pick(rng)];
     const Vec3d x = (set.vertex[t.v[0]] + set.vertex[t.v[1]] + set.vertex[t.v[2]]) * (1.0 / 3) +
                     Vec3d(jitter(rng), jitter(rng), jitter(rng)) + (set.vertex[t.v[0]] - set.vertex[t.v[1]]) * 0.3;
-    if (!inside_grid(grid, x)) continue;
-    const std::int64_t cell = grid.linear(grid.coord(x));
-    const std::set<std::int32_t> listed(b.triangles.begin() + b.cell_begin[cell],
-                                        b.triangles.begin() + b.cell_begin[cell + 1]);
+    const std::set<std::int32_t> listed = listed_near(view, x);
     for (std::int32_t u = 0; u < set.n_triangles(); ++u) {
       const ClosestPoint cp = triangle_closest_point(set.view(), u, x);
       if (cp.distance <= reach) {
         ++checked;
-        EXPECT_TRUE(listed.count(u)) << "triangle " << u << " at " << cp.distance << " not in cell " << cell;
+        EXPECT_TRUE(listed.count(u)) << "triangle " << u << " at " << cp.distance << " not listed";
       }
     }
   }
   EXPECT_GT(checked, 2000);
+  // Far from every mesh, nothing is listed.
+  EXPECT_TRUE(listed_near(view, Vec3d(1, 1, 1)).empty());
 }
 
-TEST(MeshBinning, BinnedContactsEqualContactsOverAllTriangles) {
-  const MeshSet set = two_mesh_set();
+// Bins are made once, in the reference pose; a particle is looked up at its
+// position carried back into each mesh's reference pose. At the start and
+// with the impeller turned by 66.6 degrees, binned contacts equal the
+// contacts over all triangles of the current pose.
+TEST(MeshBinning, BinnedContactsEqualContactsOverAllTrianglesInAnyPose) {
+  MeshSet set = two_mesh_set();
   const double radius = 0.0009;
-  const CellGrid grid = make_cell_grid(Vec3d(-0.06, -0.06, -0.01), Vec3d(0.06, 0.06, 0.105), 2 * radius);
-  const MeshBins bins = bin_triangles(set, grid, BinningOptions{radius, true});
-  const MeshView view = with_bins(set.view(), bins);
-  std::mt19937_64 rng(8);
-  std::uniform_int_distribution<std::int32_t> pick(0, set.n_triangles() - 1);
-  std::normal_distribution<double> jitter(0, radius);
-  int touching = 0;
-  for (int i = 0; i < 3000; ++i) {
-    const MeshCorners& t = set.corners[pick(rng)];
-    const Vec3d x = set.vertex[t.v[i % 3]] + Vec3d(jitter(rng), jitter(rng), jitter(rng));
-    if (!inside_grid(grid, x)) continue;
-    std::vector<MeshContact> binned;
-    auto collect = [&](const MeshContact& c) { binned.push_back(c); };
-    for_each_mesh_contact(view, grid, x, radius, collect);
-    const std::vector<MeshContact> all = test::all_contacts(set, x, radius);
-    ASSERT_EQ(binned.size(), all.size());
-    touching += !all.empty();
-    for (std::size_t k = 0; k < all.size(); ++k) {
-      EXPECT_EQ(binned[k].triangle, all[k].triangle);
-      EXPECT_EQ(binned[k].feature_key, all[k].feature_key);
-      EXPECT_EQ(binned[k].overlap, all[k].overlap);
-      EXPECT_EQ(binned[k].mesh, set.mesh[all[k].triangle]);
+  const MeshBins bins = bin_triangles(set, 2 * radius, BinningOptions{radius, true});
+  for (const double t : {0.0, 0.37}) {
+    SCOPED_TRACE("t = " + std::to_string(t));
+    move_meshes(set, t);
+    const MeshView view = with_bins(set.view(), bins);
+    std::mt19937_64 rng(8);
+    std::uniform_int_distribution<std::int32_t> pick(0, set.n_triangles() - 1);
+    std::normal_distribution<double> jitter(0, radius);
+    int touching = 0;
+    for (int i = 0; i < 3000; ++i) {
+      const MeshCorners& c = set.corners[pick(rng)];
+      const Vec3d x = set.vertex[c.v[i % 3]] + Vec3d(jitter(rng), jitter(rng), jitter(rng));
+      std::vector<MeshContact> binned;
+      auto collect = [&](const MeshContact& k) { binned.push_back(k); };
+      for_each_mesh_contact(view, x, radius, collect);
+      const std::vector<MeshContact> all = test::all_contacts(set, x, radius);
+      ASSERT_EQ(binned.size(), all.size());
+      touching += !all.empty();
+      for (std::size_t k = 0; k < all.size(); ++k) {
+        EXPECT_EQ(binned[k].triangle, all[k].triangle);
+        EXPECT_EQ(binned[k].feature_key, all[k].feature_key);
+        EXPECT_EQ(binned[k].overlap, all[k].overlap);
+        EXPECT_EQ(binned[k].mesh, set.mesh[all[k].triangle]);
+      }
     }
+    EXPECT_GT(touching, 1500);
   }
-  EXPECT_GT(touching, 1500);
 }
 
 TEST(MeshBinning, RejectsNegativeReach) {
   const MeshSet set = two_mesh_set();
-  const CellGrid grid = make_cell_grid(Vec3d(-0.06, -0.06, -0.01), Vec3d(0.06, 0.06, 0.105), 0.01);
-  EXPECT_THROW(bin_triangles(set, grid, BinningOptions{-1, true}), std::invalid_argument);
+  EXPECT_THROW(bin_triangles(set, 0.01, BinningOptions{-1, true}), std::invalid_argument);
 }
 
 }  // namespace
