@@ -2,7 +2,7 @@
 # One session on a GPU machine: build with CUDA, run the whole test suite on
 # both backends, compare CPU and GPU runs of the demo, then the benchmarks.
 # Results go to $OUT (default ./device_out). Usage, from the repository root:
-#   bench/device_session.sh [all|tests|bench|effects|mixer|mixprofile|mixacc|scaling][,...]
+#   bench/device_session.sh [all|tests|bench|effects|mixer|mixprofile|mixacc|accuracy|output|scaling][,...]
 # METIS and yaml-cpp may be carried as unpacked Debian packages in carry/root
 # (see docs/PERFORMANCE.md) when the machine lacks them.
 set -uo pipefail
@@ -82,6 +82,20 @@ if wants mixprofile; then
     (cd cases/mixer && "$root/build-gpu/src/grainstorm" run "$1" --backend cuda --steps "$2" --out "/tmp/prof_$1" 2>&1 |
        grep -E "particles,|done|time per phase")
   done >> "$log" 2>&1
+fi
+
+if wants accuracy; then
+  # What accuracy costs in time (docs/ACCURACY.md): the grid on the GPU and on 16 CPU threads.
+  for b in cuda cpu; do
+    OMP_NUM_THREADS=16 build-gpu/bench/accuracy_study --backend $b > "$OUT/accuracy_$b.csv" 2>> "$log"
+  done
+  python3 bench/plot_accuracy.py "$OUT/accuracy_cuda.csv" "$OUT/accuracy_plots" > "$OUT/accuracy_tables.md" 2>> "$log"
+  python3 bench/plot_accuracy.py "$OUT/accuracy_cpu.csv" "$OUT/accuracy_plots" >> "$OUT/accuracy_tables.md" 2>> "$log"
+fi
+
+if wants output; then
+  # Snapshot output at 16e6 frictional particles on one GPU: the phase line's "output" is the two snapshots.
+  timeout 300 bench/scaling_bed.sh build-gpu weak 16000000 1 100 /tmp/output_bed >> "$log" 2>&1
 fi
 
 if wants mixer; then

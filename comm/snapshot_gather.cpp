@@ -100,18 +100,9 @@ ParticleRecords gather_history_records(Transport& transport, const ParticleRecor
   std::vector<std::size_t> order(all.size());
   std::iota(order.begin(), order.end(), std::size_t(0));
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all.id[a] < all.id[b]; });
-  const std::size_t k = std::size_t(out.history.slots);
-  auto rows = [&](const auto& from, auto& to) {
-    if (from.empty()) return;
-    to.resize(from.size());
-    for (std::size_t r = 0; r < order.size(); ++r)
-      for (std::size_t s = 0; s < k; ++s) to[r * k + s] = from[order[r] * k + s];
-  };
   out.id.resize(order.size());
   for (std::size_t r = 0; r < order.size(); ++r) out.id[r] = all.id[order[r]];
-  rows(all.history.partner, out.history.partner);
-  rows(all.history.tangential, out.history.tangential);
-  rows(all.history.rolling, out.history.rolling);
+  out.history = rows_permuted(all.history, order);
   return out;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // Particles on the host, as plain arrays: what moves between ranks (migration
 // and ghosts) and what checkpoints hold. Values are copied bit for bit.
+#include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "core/particle_store.hpp"
@@ -27,5 +29,22 @@ struct ParticleRecords {
 
   std::size_t size() const { return id.size(); }
 };
+
+// History row r of the result is row order[r] of h.
+inline HostHistory rows_permuted(const HostHistory& h, const std::vector<std::size_t>& order) {
+  const std::size_t k = std::size_t(h.slots);
+  auto rows = [&](const auto& from) {
+    std::decay_t<decltype(from)> to(from.empty() ? 0 : order.size() * k);
+    for (std::size_t r = 0; r < order.size() && !from.empty(); ++r)
+      for (std::size_t s = 0; s < k; ++s) to[r * k + s] = from[order[r] * k + s];
+    return to;
+  };
+  HostHistory out;
+  out.slots = h.slots;
+  out.partner = rows(h.partner);
+  out.tangential = rows(h.tangential);
+  out.rolling = rows(h.rolling);
+  return out;
+}
 
 }  // namespace gs

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
-#include <type_traits>
 
 #include "scene/position_resolution.hpp"
 #include "walls/wall_motion.hpp"
@@ -26,23 +25,6 @@ template <class T>
 std::vector<T> permuted(const std::vector<T>& v, const std::vector<std::size_t>& order) {
   std::vector<T> out(order.size());
   for (std::size_t k = 0; k < order.size(); ++k) out[k] = v[order[k]];
-  return out;
-}
-
-// History row r of the result is row order[r] of h.
-HostHistory rows_permuted(const HostHistory& h, const std::vector<std::size_t>& order) {
-  const std::size_t k = std::size_t(h.slots);
-  auto rows = [&](const auto& from) {
-    std::decay_t<decltype(from)> to(from.empty() ? 0 : order.size() * k);
-    for (std::size_t r = 0; r < order.size() && !from.empty(); ++r)
-      for (std::size_t s = 0; s < k; ++s) to[r * k + s] = from[order[r] * k + s];
-    return to;
-  };
-  HostHistory out;
-  out.slots = h.slots;
-  out.partner = rows(h.partner);
-  out.tangential = rows(h.tangential);
-  out.rolling = rows(h.rolling);
   return out;
 }
 
