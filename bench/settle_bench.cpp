@@ -1,8 +1,11 @@
-// Throughput of a settled bed of N spheres: particle-steps per second and
-// device bytes per particle. The bed is a cubic lattice pressed 0.5 % into
-// overlap under gravity in a box, so every particle starts with about six
-// contacts (close to the coordination number of a settled bed) and the
-// contact count stays steady while the benchmark times it.
+// Throughput of a bed of N spheres: particle-steps per second and device
+// bytes per particle. The bed is a cubic lattice pressed 0.5 % into overlap
+// under gravity in a box, so every particle starts with about six contacts.
+// The box leaves room (a spacing at two side walls, 2 r above the top), so the
+// overlaps push the lattice apart: 5.7 contacts per sphere at step 20, 4.1 at
+// step 70, under one from step 220 on (counted in both codes of the
+// LIGGGHTS comparison, bench/liggghts/README.md). Short runs (--steps 50)
+// time the dense bed, long ones mostly a loose, moving one.
 //
 //   settle_bench [--n N] [--steps S] [--backend cpu|cuda] [--precision fp32|fp64|fp32_full]
 //                [--effects none|friction|rolling|cohesion] [--model linear|hertz]
