@@ -9,6 +9,7 @@
 
 #include "app/commands.hpp"
 #include "app/run_output.hpp"
+#include "engine/schedule.hpp"
 #include "app/stop_signal.hpp"
 #include "backend/memory.hpp"
 #include "comm/domain_exchange.hpp"
@@ -69,6 +70,7 @@ std::string file_text(const std::string& path) {
 long long steps_per(double interval, double dt) {
   return interval > 0 ? std::max(1LL, std::llround(interval / dt)) : 0;
 }
+
 
 // Progress to stderr at most every two seconds: step, time, rate, ETA.
 class Progress {
@@ -149,12 +151,9 @@ int command_run(const std::vector<std::string>& args, Transport& transport) {
   const long long checkpoint_every = steps_per(scene.output.checkpoint_interval, scene.time_step);
   const double checkpoint_seconds = 60.0 * scene.output.checkpoint_minutes;
   const bool checkpointing = checkpoint_every > 0 || checkpoint_seconds > 0;
-  // Mixing analysis at start, start + every, ... (steps counted from step 0).
-  const long long mixing_every = scene.mixing ? steps_per(scene.mixing->every, scene.time_step) : 0;
-  const long long mixing_first = scene.mixing ? std::llround(scene.mixing->start / scene.time_step) : 0;
-  auto mixing_due = [&](long long step) {
-    return mixing_every > 0 && step >= mixing_first && (step - mixing_first) % mixing_every == 0;
-  };
+  // Mixing analysis at start, start + every, ...
+  const Schedule mixing = scene.mixing ? Schedule{scene.mixing->start, scene.mixing->every, scene.time_step}
+                                       : Schedule{};
   // Marking is a function of the positions at its step, so doing it again
   // after a restart at that very step changes nothing.
   const long long mark_step = scene.marking ? std::llround(scene.marking->time / scene.time_step) : -1;
@@ -169,23 +168,19 @@ int command_run(const std::vector<std::string>& args, Transport& transport) {
   Progress progress(sim->step_count(), total, particles);
   if (a.restart.empty()) mark_if_due(0);
   if (a.restart.empty()) out.snapshot(*sim);
-  if (a.restart.empty() && mixing_due(0)) out.mixing(*sim);
+  if (a.restart.empty() && mixing.due(0)) out.mixing(*sim);
   while (sim->step_count() < total) {
     const long long step = sim->step_count();
     long long chunk = std::min({every > 0 ? every - step % every : total, total - step, 200LL});
     if (checkpoint_every > 0) chunk = std::min(chunk, checkpoint_every - step % checkpoint_every);
-    if (mixing_every > 0) {
-      const long long next = step < mixing_first ? mixing_first
-                                                 : mixing_first + ((step - mixing_first) / mixing_every + 1) * mixing_every;
-      chunk = std::min(chunk, next - step);
-    }
+    if (mixing.every > 0) chunk = std::min(chunk, mixing.next_after(step) - step);
     if (mark_step > step) chunk = std::min(chunk, mark_step - step);
     sim->run(chunk);
     mark_if_due(sim->step_count());
     progress.update(*sim);
     const long long now = sim->step_count();
     if ((every > 0 && now % every == 0) || now == total) out.snapshot(*sim);
-    if (mixing_due(now)) out.mixing(*sim);
+    if (mixing.due(now)) out.mixing(*sim);
     const bool wall_due = checkpoint_seconds > 0 &&
                           std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >= checkpoint_seconds;
     // Every rank must agree before a collective checkpoint or a stop.
