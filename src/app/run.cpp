@@ -165,7 +165,8 @@ int command_run(const std::vector<std::string>& args, Transport& transport) {
   };
   const auto t0 = Clock::now();
   auto last_checkpoint = t0;
-  Progress progress(sim->step_count(), total, particles);
+  const long long first_step = sim->step_count();  // after a restart, the rate counts this run's steps only
+  Progress progress(first_step, total, particles);
   if (a.restart.empty()) mark_if_due(0);
   if (a.restart.empty()) out.snapshot(*sim);
   if (a.restart.empty() && mixing.due(0)) out.mixing(*sim);
@@ -199,7 +200,7 @@ int command_run(const std::vector<std::string>& args, Transport& transport) {
   }
   const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
   out.log("done: %lld steps, t = %.6g s, %.3g particle-steps/s\n", total, sim->time(),
-          wall > 0 ? double(sim->step_count()) * double(particles) / wall : 0.0);
+          wall > 0 ? double(sim->step_count() - first_step) * double(particles) / wall : 0.0);
   if (exchange) out.log("decomposition at the end: %s\n", exchange->describe().c_str());
   const StepTimings t = sim->timings();
   out.log("time per phase (s, rank 0): integration %.3f, neighbour build %.3f, contact forces %.3f, exchange %.3f, "
