@@ -44,6 +44,7 @@ std::vector<double> ring_radii_in_annulus(double inner, double outer, int count)
 std::string sample_layout_problem(const SampleSpec& spec) {
   if (!(spec.radius > 0)) return "the sample radius must be > 0, got " + text(spec.radius);
   if (!(spec.height > 0)) return "the sample height must be > 0, got " + text(spec.height);
+  if (!(spec.layers >= 1)) return "the samples need at least one layer, got " + std::to_string(spec.layers);
   if (!(spec.spacing > 0)) return "the spacing along a ring must be > 0, got " + text(spec.spacing);
   if (spec.ring_radii.empty()) return "at least one ring is needed";
   const double a = spec.radius;
@@ -80,6 +81,8 @@ SampleLayout::SampleLayout(const SampleSpec& spec) : spec_(spec) {
 
 int SampleLayout::locate(double x, double y, double z) const {
   if (z < spec_.bottom || z > spec_.bottom + spec_.height) return -1;
+  // Layer of z; the top face belongs to the top layer.
+  const int layer = std::min(spec_.layers - 1, int((z - spec_.bottom) / spec_.height * spec_.layers));
   const double a = spec_.radius;
   const double dx = x - spec_.center_x, dy = y - spec_.center_y;
   const double rho = std::sqrt(dx * dx + dy * dy);
@@ -93,7 +96,7 @@ int SampleLayout::locate(double x, double y, double z) const {
     const int j = ((int(std::lround(angle * n / (2 * kPi))) % n) + n) % n;
     const SampleSite& site = sites_[std::size_t(ring_first_[k] + j)];
     const double ex = x - site.x, ey = y - site.y;
-    if (ex * ex + ey * ey <= a * a) return ring_first_[k] + j;
+    if (ex * ex + ey * ey <= a * a) return (ring_first_[k] + j) * spec_.layers + layer;
   }
   return -1;
 }
@@ -103,7 +106,7 @@ std::vector<SampleTally> tally_samples(const SampleLayout& layout, const std::ve
                                        int tracer_marker) {
   if (mass.size() != position.size() || marker.size() != position.size())
     throw std::invalid_argument("tally_samples: position, mass and marker differ in length");
-  std::vector<SampleTally> tallies(layout.sites().size());
+  std::vector<SampleTally> tallies(std::size_t(layout.sample_count()));
   for (std::size_t i = 0; i < position.size(); ++i) {
     const int s = layout.locate(position[i].x, position[i].y, position[i].z);
     if (s < 0) continue;

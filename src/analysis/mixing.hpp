@@ -18,15 +18,17 @@ struct SampleSite {
   int ring = 0;
 };
 
-// The sample cylinders of a SampleSpec, ring by ring, and which one (if any)
-// holds a point. Samples never overlap (sample_layout_problem is empty), so a
-// point lies in at most one.
+// The sample cylinders of a SampleSpec, ring by ring, and which sample (if
+// any) holds a point: sample (site s, layer l) has index s * layers + l.
+// Samples never overlap (sample_layout_problem is empty), so a point lies in
+// at most one.
 class SampleLayout {
  public:
   explicit SampleLayout(const SampleSpec& spec);  // throws std::invalid_argument on a bad spec
 
   const SampleSpec& spec() const { return spec_; }
   const std::vector<SampleSite>& sites() const { return sites_; }
+  int sample_count() const { return int(sites_.size()) * spec_.layers; }
   int ring_count() const { return int(ring_first_.size()); }
   int samples_on_ring(int ring) const { return ring_size_[std::size_t(ring)]; }
   // Index of the sample whose closed cylinder holds the point, or -1.

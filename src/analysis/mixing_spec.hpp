@@ -18,6 +18,10 @@ struct SampleSpec {
   double radius = 0;                  // sample cylinder radius [m]
   double height = 0;                  // sample cylinder height [m]
   double bottom = 0;                  // z of the cylinder bottoms [m]
+  // Each cylinder cut into this many samples of equal height, stacked: in a
+  // bed much taller than the blades, a full-height sample counts a lower part
+  // turned against an upper one as mixed (docs/MIXER.md).
+  int layers = 1;
 };
 
 // Which concentration the statistics use: number fraction of tracer particles
@@ -38,7 +42,7 @@ struct MixingSpec {
   std::string output = "mixing.csv";  // CSV log; a relative path lies in output.directory
 };
 
-// Radius of a sample cylinder of `height` holding `mass` of powder at
+// Radius of a sample (one layer's cylinder) of `height` holding `mass` of powder at
 // `bulk_density`: m = rho_bulk pi a^2 h.
 double sample_radius_for_mass(double mass, double bulk_density, double height);
 
@@ -47,7 +51,8 @@ double sample_radius_for_mass(double mass, double bulk_density, double height);
 std::vector<double> ring_radii_in_annulus(double inner, double outer, int count);
 
 // Why the samples are unusable (an empty string when they are fine): sizes not
-// positive, radii not ascending, or two sample cylinders overlapping.
+// positive, fewer than one layer, radii not ascending, or two sample cylinders
+// overlapping.
 std::string sample_layout_problem(const SampleSpec& spec);
 
 }  // namespace gs

@@ -12,7 +12,7 @@ namespace {
 const std::vector<std::string> kMixingKeys = {
     "center",        "bottom",      "height",       "rings",         "ring_radii", "spacing",
     "sample_radius", "sample_mass", "bulk_density", "tracer_marker", "basis",      "min_particles",
-    "min_fill",      "every",       "start",        "revolution_period", "output"};
+    "min_fill",      "every",       "start",        "revolution_period", "output",     "layers"};
 
 void read_center(const Val& v, SampleSpec& samples) {
   if (!v.node.IsSequence() || v.node.size() != 2)
@@ -49,14 +49,15 @@ double read_rings(const Map& m, SampleSpec& samples) {
   return 0;
 }
 
-// `sample_radius`, or `sample_mass` with `bulk_density` (m = rho_bulk pi a^2 h).
+// `sample_radius`, or `sample_mass` with `bulk_density` (m = rho_bulk pi a^2 h,
+// h the height of one layer).
 void read_sample_size(const Map& m, SampleSpec& samples) {
   if (m.one_of({"sample_radius", "sample_mass"}) == "sample_radius") {
     samples.radius = positive(m.get("sample_radius"));
     if (m.has("bulk_density")) fail(m.get("bulk_density"), "belongs with sample_mass, not with sample_radius");
   } else {
     samples.radius = sample_radius_for_mass(positive(m.get("sample_mass")), positive(m.get("bulk_density")),
-                                            samples.height);
+                                            samples.height / samples.layers);
   }
 }
 
@@ -76,6 +77,7 @@ MixingSpec parse_mixing(const Map& m, const SceneSpec& s) {
   read_center(m.get("center"), smp);
   smp.bottom = number(m.get("bottom"));
   smp.height = positive(m.get("height"));
+  if (m.has("layers")) smp.layers = int(integer(m.get("layers"), 1, 1000));
   const double ring_width = read_rings(m, smp);
   read_sample_size(m, smp);
   const Val size = m.has("sample_radius") ? m.get("sample_radius") : m.get("sample_mass");

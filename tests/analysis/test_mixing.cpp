@@ -195,6 +195,37 @@ TEST(MixingStatistics, RandomBedHasLaceyOneWithinSamplingError) {
   }
 }
 
+// A bed whose lower half is split by the plane x = c and whose upper half by
+// y = c (a lower part turned a quarter against the upper one, nothing mixed).
+// A full-height sample in two quadrants holds one species, in the other two
+// half of each: s^2 = 1/8 = s0^2 / 2, so M = 1/2 (up to the samples the
+// planes cut and sr^2 = s0^2 / n). Samples in two layers see each half
+// alone: segregated, M = 0, as for the segregated bed above.
+TEST(MixingStatistics, LayersTellTurnedLayersFromMixing) {
+  MixingSpec spec = mixing_spec();
+  std::mt19937_64 rng(21);
+  ParticleSnapshot snap = random_bed(spec.samples, 0.05, 100000, rng);
+  const double middle = spec.samples.bottom + 0.5 * spec.samples.height;
+  for (std::size_t i = 0; i < snap.size(); ++i) {
+    const Vec3d& x = snap.position[i];
+    snap.marker[i] = x.z < middle ? x.x > spec.samples.center_x : x.y > spec.samples.center_y;
+  }
+  const MixingResult whole = evaluate_mixing(spec, snap);
+  spec.samples.layers = 2;
+  const MixingResult layered = evaluate_mixing(spec, snap);
+  std::printf("[ measured ] Lacey of full-height samples %.3f, of samples in two layers %.3f\n", whole.lacey,
+              layered.lacey);
+  EXPECT_EQ(layered.samples_total, 2 * whole.samples_total);
+  EXPECT_NEAR(whole.lacey, 0.5, 0.1);
+  EXPECT_NEAR(layered.lacey, 0, 0.1);
+  // Sample (site s, layer l) is s * layers + l.
+  const SampleLayout layout(spec.samples);
+  const SampleSite& site = layout.sites()[3];
+  EXPECT_EQ(layout.locate(site.x, site.y, middle - 1e-6), 6);
+  EXPECT_EQ(layout.locate(site.x, site.y, middle + 1e-6), 7);
+  EXPECT_EQ(layout.locate(site.x, site.y, spec.samples.bottom + spec.samples.height), 7);
+}
+
 TEST(MixingStatistics, MinimumCountRuleAndUndefinedCases) {
   MixingSpec spec = mixing_spec();
   std::vector<SampleTally> t(6);
@@ -318,7 +349,14 @@ TEST(MixingScene, KeysParse) {
   EXPECT_EQ(m.output, "mix.csv");
   EXPECT_EQ(m.tracer_marker, 1);
   EXPECT_EQ(m.basis, ConcentrationBasis::number);
+  EXPECT_EQ(m.samples.layers, 1);
   EXPECT_FALSE(parse_scene(kScene.substr(0, kScene.find("analysis:")), "scene.yaml").mixing.has_value());
+  // Layers: each holds the sample mass, so the cylinders widen by sqrt(layers).
+  std::string layered = kScene;
+  layered.replace(layered.find("    output: mix.csv"), 19, "    output: mix.csv\n    layers: 2");
+  const SampleSpec two = parse_scene(layered, "scene.yaml").mixing->samples;
+  EXPECT_EQ(two.layers, 2);
+  EXPECT_NEAR(1500 * kPi * two.radius * two.radius * 0.01, 0.00046, 1e-12);
 }
 
 TEST(MixingScene, ErrorsNameLineAndKey) {
@@ -336,6 +374,7 @@ TEST(MixingScene, ErrorsNameLineAndKey) {
          "16: analysis.mixing.ring_radii[1]", "ascending");
   expect(scene_error("outer_radius: 0.05", "outer_radius: 0.07"), "12: analysis.mixing", "outside the domain");
   expect(scene_error("center: [0, 0]", "center: [0, 0, 0]"), "13: analysis.mixing.center", "[x, y]");
+  expect(scene_error("    output: mix.csv", "    output: mix.csv\n    layers: 0"), "21: analysis.mixing.layers", "[1, 1000]");
 }
 
 }  // namespace
