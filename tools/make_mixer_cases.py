@@ -42,7 +42,7 @@ def solid_volume(count, diameter):
     return count * math.pi / 6 * diameter**3
 
 
-def scene(case, revolutions, froude, stiffness_scale, settle, suffix):
+def scene(case, revolutions, froude, stiffness_scale, settle, suffix, layers=1):
     count, diameter, froude_rpm = CASES[case]
     rpm = froude_rpm if froude else 30.0
     period = 60.0 / rpm
@@ -120,7 +120,7 @@ analysis:
     bulk_density: {DENSITY * BED_PACKING:g}
     start: {settle:g}
     revolution_period: {period:.6g}
-"""
+""" + (f"    layers: {layers}               # samples stacked in height (docs/MIXING.md)\n" if layers > 1 else "")
 
 
 def main():
@@ -132,15 +132,16 @@ def main():
     p.add_argument("--stiffness-scale", type=float, default=1.0)
     p.add_argument("--settle", type=float, default=1.0, help="seconds of settling before marking [1.0]")
     p.add_argument("--suffix", default="", help="appended to the file names, e.g. _froude")
+    p.add_argument("--layers", type=int, default=1, help="mixing samples stacked in height [1]")
     a = p.parse_args()
     if not set(a.cases) <= set(CASES) or not a.cases:
         sys.exit(f"make_mixer_cases: --cases must be letters of abcd, got '{a.cases}'")
-    if a.revolutions < 1 or not a.stiffness_scale > 0 or not a.settle > 0:
-        sys.exit("make_mixer_cases: --revolutions >= 1, --stiffness-scale > 0 and --settle > 0 are required")
+    if a.revolutions < 1 or not a.stiffness_scale > 0 or not a.settle > 0 or a.layers < 1:
+        sys.exit("make_mixer_cases: --revolutions >= 1, --stiffness-scale > 0, --settle > 0 and --layers >= 1 are required")
     for c in a.cases:
         path = os.path.join(a.out_dir, f"case_{c}{a.suffix}.yaml")
         with open(path, "w") as f:
-            f.write(scene(c, a.revolutions, a.froude, a.stiffness_scale, a.settle, a.suffix))
+            f.write(scene(c, a.revolutions, a.froude, a.stiffness_scale, a.settle, a.suffix, a.layers))
         print(path)
 
 
