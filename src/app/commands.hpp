@@ -8,7 +8,8 @@ namespace gs {
 class Transport;
 int command_run(const std::vector<std::string>& args, Transport& transport);
 int command_check(const std::vector<std::string>& args);
-int command_info(const std::vector<std::string>& args);  // app/command_info.cpp
+int command_info(const std::vector<std::string>& args);    // app/command_info.cpp
+int command_mixing(const std::vector<std::string>& args);  // app/command_mixing.cpp
 
 std::string human_bytes(double bytes);  // "1.5 MiB"
 

@@ -25,6 +25,9 @@ const char* kUsage =
     "      validate a scene and print particle count, time step, contact time and memory estimate\n"
     "  grainstorm info FILE.h5\n"
     "      summarise an HDF5 snapshot or checkpoint: time, step, particles, fields, bounding box, scene hash\n"
+    "  grainstorm mixing SCENE SNAPSHOT.h5... --out FILE.csv [--layers L]\n"
+    "      the scene's mixing analysis (Lacey, RSD) over written snapshots, optionally with its\n"
+    "      sample cylinders cut into L stacked samples; one CSV row per snapshot\n"
     "  grainstorm --help | --version\n"
     "\n"
     "The scene format is documented in docs/SCENES.md, output files in docs/OUTPUT.md.\n";
@@ -74,6 +77,7 @@ int main(int argc, char** argv) {
   try {
     if (args[0] == "check") return gs::command_check(args);
     if (args[0] == "info") return gs::command_info(args);
+    if (args[0] == "mixing") return gs::command_mixing(args);
     std::fprintf(stderr, "grainstorm: unknown command '%s'\n\n%s", args[0].c_str(), kUsage);
     return 2;
   } catch (const std::exception& e) {

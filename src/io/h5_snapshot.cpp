@@ -64,7 +64,31 @@ void write_root_attributes(const h5::File& f, const ParticleSnapshot& s, const S
   h5::write_string_attribute(f, "/", "units", "SI: m, kg, s, N, rad");
 }
 
+template <class T>
+void read_if_present(const h5::File& f, SnapshotField field, hsize_t n, std::vector<T>& into) {
+  const std::string path = std::string("particles/") + field_info(field).name;
+  if (h5::exists(f, path)) into = h5::read_array<T>(f, path, {n});
+}
+
 }  // namespace
+
+ParticleSnapshot read_snapshot(const std::string& path) {
+  const h5::File f = h5::File::open_read_only(path);
+  if (!h5::has_attribute(f, "/", "kind") || h5::read_string_attribute(f, "/", "kind") != "grainstorm snapshot")
+    throw h5::FormatError(path + ": not a grainstorm snapshot");
+  ParticleSnapshot s;
+  s.time = h5::read_attribute<double>(f, "/", "time");
+  s.step = h5::read_attribute<std::int64_t>(f, "/", "step");
+  const auto n = hsize_t(h5::read_attribute<std::int64_t>(f, "/", "particle_count"));
+  read_if_present(f, SnapshotField::id, n, s.id);
+  read_if_present(f, SnapshotField::material, n, s.material);
+  read_if_present(f, SnapshotField::marker, n, s.marker);
+  read_if_present(f, SnapshotField::radius, n, s.radius);
+  read_if_present(f, SnapshotField::mass, n, s.mass);
+  if (h5::exists(f, "particles/position")) s.position = h5::read_vec3(f, "particles/position", n);
+  if (h5::exists(f, "particles/velocity")) s.velocity = h5::read_vec3(f, "particles/velocity", n);
+  return s;
+}
 
 std::string snapshot_h5_name(long long step) {
   char name[64];

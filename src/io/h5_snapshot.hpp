@@ -32,4 +32,10 @@ std::string snapshot_h5_name(long long step);
 void write_snapshot(const std::string& path, const ParticleSnapshot& s, const SnapshotFields& fields,
                     const std::vector<Wall>& walls, const SnapshotMetadata& metadata);
 
+// Reads back a snapshot's time, step and whichever of id, material, marker,
+// radius, mass, position and velocity it holds (the others stay empty).
+// h5::FormatError when the file is not a grainstorm snapshot or a field has
+// the wrong shape or type.
+ParticleSnapshot read_snapshot(const std::string& path);
+
 }  // namespace gs
