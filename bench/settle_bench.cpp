@@ -5,7 +5,9 @@
 // overlaps push the lattice apart: 5.7 contacts per sphere at step 20, 4.1 at
 // step 70, under one from step 220 on (counted in both codes of the
 // LIGGGHTS comparison, bench/liggghts/README.md). Short runs (--steps 50)
-// time the dense bed, long ones mostly a loose, moving one.
+// time the dense bed, long ones mostly a loose, moving one; the output line
+// ends with the contacts per particle (walls included) after the timed steps
+// (-1 without friction, which keeps no contact history).
 //
 //   settle_bench [--n N] [--steps S] [--backend cpu|cuda] [--precision fp32|fp64|fp32_full]
 //                [--effects none|friction|rolling|cohesion] [--model linear|hertz]
@@ -147,12 +149,21 @@ int main(int argc, char** argv) {
     const double rate = double(o.steps) * n / wall;
     const double bytes = double(gs::backend_peak_bytes(o.backend)) / n;
     const gs::StepTimings t = sim.timings();
+    // What the timed steps ended with: the bed loosens as it runs (see the top).
+    double contacts = -1;
+    if (gs::uses_history(o.effects)) {
+      const gs::ParticleSnapshot end = sim.snapshot();
+      contacts = 0;
+      for (std::uint16_t c : end.contacts) contacts += c;
+      contacts /= n;
+    }
     std::printf("backend=%s n=%zu mesh=%s precision=%s effects=%u model=%s steps=%lld wall_s=%.3f "
                 "particle_steps_per_s=%.4g peak_bytes_per_particle=%.1f held_bytes_per_particle=%.1f "
-                "integrate_s=%.3f neighbours_s=%.3f forces_s=%.3f\n",
-                gs::backend_name(o.backend), scene.particles.size(), o.mesh ? "impeller" : "none", gs::precision_name(o.precision), o.effects,
-                o.model == gs::ContactModel::linear ? "linear" : "hertz", o.steps, wall, rate, bytes,
-                double(sim.device_bytes()) / n, t.integrate, t.neighbours, t.forces);
+                "integrate_s=%.3f neighbours_s=%.3f forces_s=%.3f contacts_per_particle_at_end=%.2f\n",
+                gs::backend_name(o.backend), scene.particles.size(), o.mesh ? "impeller" : "none",
+                gs::precision_name(o.precision), o.effects, o.model == gs::ContactModel::linear ? "linear" : "hertz",
+                o.steps, wall, rate, bytes, double(sim.device_bytes()) / n, t.integrate, t.neighbours, t.forces,
+                contacts);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "settle_bench: %s\n", e.what());
