@@ -2,7 +2,8 @@
 // The scene's triangle meshes in a backend's memory, and the per-particle
 // loads on them (walls/mesh.hpp has the layout). Topology, reference vertices,
 // materials and bins are uploaded once; every step the meshes move, kernels
-// pose the vertices from the reference (StepKernelsImpl::set_mesh_pose). Empty, and never read by a kernel, when the scene has none.
+// pose the vertices from the reference (StepKernelsImpl::set_mesh_pose).
+// Empty, and never read by a kernel, when the scene has none.
 #include <vector>
 
 #include "backend/device_array.hpp"
@@ -79,10 +80,9 @@ struct DeviceMeshes {
   MeshLoad* loads() { return n_triangles > 0 ? load.data() : nullptr; }
 
   std::size_t bytes() const {
-    return reference.bytes() + vertex.bytes() + corners.bytes() + edges.bytes() + edge_ends.bytes() + owned.bytes() + mesh.bytes() +
-           pose.bytes() + material.bytes() + crease_cos.bytes() + bin_grid.bytes() +
-           bin_first_cell.bytes() + cell_begin.bytes() + cell_triangles.bytes() +
-           load.bytes();
+    return reference.bytes() + vertex.bytes() + corners.bytes() + edges.bytes() + edge_ends.bytes() +
+           owned.bytes() + mesh.bytes() + pose.bytes() + material.bytes() + crease_cos.bytes() + bin_grid.bytes() +
+           bin_first_cell.bytes() + cell_begin.bytes() + cell_triangles.bytes() + load.bytes();
   }
 };
 

@@ -374,7 +374,8 @@ TEST(MixingScene, ErrorsNameLineAndKey) {
          "16: analysis.mixing.ring_radii[1]", "ascending");
   expect(scene_error("outer_radius: 0.05", "outer_radius: 0.07"), "12: analysis.mixing", "outside the domain");
   expect(scene_error("center: [0, 0]", "center: [0, 0, 0]"), "13: analysis.mixing.center", "[x, y]");
-  expect(scene_error("    output: mix.csv", "    output: mix.csv\n    layers: 0"), "21: analysis.mixing.layers", "[1, 1000]");
+  expect(scene_error("    output: mix.csv", "    output: mix.csv\n    layers: 0"), "21: analysis.mixing.layers",
+         "[1, 1000]");
 }
 
 }  // namespace

@@ -174,7 +174,9 @@ walls:
   - box: {min: [0, 0, 0], max: [0.03, 0.03, 0.03]}
     material: glass
 particles:
-  - random_fill: {material: glass, region: {box: {min: [0.001, 0.001, 0.001], max: [0.029, 0.029, 0.029]}}, count: 300, radius: 0.001, seed: 3}
+  - random_fill:
+      {material: glass, region: {box: {min: [0.001, 0.001, 0.001], max: [0.029, 0.029, 0.029]}}, count: 300,
+       radius: 0.001, seed: 3}
 marking: {time: 0, plane: {point: [0.015, 0, 0], normal: [1, 0, 0]}, front: 1, back: 0}
 time_step: {absolute: 0.00004}
 duration: 0.012
@@ -210,8 +212,9 @@ TEST_F(CliTest, MixingOverSnapshotsEqualsTheRunsAnalysis) {
   ASSERT_EQ(l.exit_code, 0) << l.err;
   EXPECT_NE(l.out.find("of 2 layers"), std::string::npos) << l.out;
   EXPECT_NE(read_file(work_ / "layered.csv"), run_log);
-  for (const std::string& bad : {std::string("mixing scene.yaml res/run.log --out bad.csv"), "mixing scene.yaml " + snaps,
-                                 "mixing scene.yaml " + snaps + " --out bad.csv --layers 0"}) {
+  const std::string bad_runs[] = {"mixing scene.yaml res/run.log --out bad.csv", "mixing scene.yaml " + snaps,
+                                  "mixing scene.yaml " + snaps + " --out bad.csv --layers 0"};
+  for (const std::string& bad : bad_runs) {
     const CliResult b = run_cli(bad);
     EXPECT_NE(b.exit_code, 0) << bad;
     EXPECT_FALSE(b.err.empty()) << bad;
