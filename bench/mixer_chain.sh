@@ -28,8 +28,11 @@ left=$((limit - ($(date +%s) - start) - 40))
 echo "build took $(($(date +%s) - start)) s; running for $left s"
 for scene in "$@"; do
   name=$(basename "$scene" .yaml)
-  # A checkpoint carried from an earlier machine (carry/seed/NAME/) starts an absent run.
-  if [[ ! -d $runs/$name && -d carry/seed/$name ]]; then mkdir -p "$runs/$name" && cp carry/seed/$name/* "$runs/$name/"; fi
+  # A checkpoint carried from an earlier machine starts an absent run: the
+  # parts that KEEP_CHECKPOINTS=1 returned, put in carry/seed/.
+  if [[ ! -d $runs/$name ]] && compgen -G "carry/seed/seed_$name.tar.gz.part*" > /dev/null; then
+    mkdir -p "$runs/$name" && cat carry/seed/seed_$name.tar.gz.part* | tar xzf - -C "$runs/$name"
+  fi
   bench/mixer_long.sh build-gpu/src/grainstorm "cases/mixer/$scene" "$runs/$name" "$left" cuda &
 done
 wait
@@ -49,13 +52,14 @@ for scene in "$@"; do
 done
 tar czf "$OUT/mixruns.tar.gz" -C "$pack" .
 # KEEP_CHECKPOINTS=1: the newest checkpoint of each unfinished run comes back
-# too, to be carried to the next machine as carry/seed/NAME/.
+# too (seed_NAME.tar.gz.partNN), to be carried to the next machine in carry/seed/.
 if [[ ${KEEP_CHECKPOINTS:-0} == 1 ]]; then
   for scene in "$@"; do
     name=$(basename "$scene" .yaml)
     grep -q '^done:' "$runs/$name/pieces.log" && continue
     last=$(ls "$runs/$name"/checkpoint_*.h5 2>/dev/null | sort | tail -1)
-    [[ -n $last ]] && tar czf "$OUT/seed_$name.tar.gz" -C "$runs/$name" "$(basename "$last")"
+    # In parts of 15 MiB: a leased machine returns files of at most 16 MiB.
+    [[ -n $last ]] && tar czf - -C "$runs/$name" "$(basename "$last")" | split -b 15M -d - "$OUT/seed_$name.tar.gz.part"
   done
 fi
 ls -la "$OUT"
