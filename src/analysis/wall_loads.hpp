@@ -2,8 +2,8 @@
 // Force and torque that the particles put on each analytic wall, for the time
 // series. Evaluated on the host from a (gathered) snapshot and its contact
 // history (of the particles with a stored wall contact: `on_walls`, sorted by
-// id, as Simulation::wall_contact_history gives), with the same contact law as the force kernel: springs as stored,
-// no spring increment (dt = 0), and the velocities of the snapshot (end of
+// id, as Simulation::wall_contact_history gives), with the same contact law
+// as the force kernel: springs as stored, no spring increment (dt = 0), and the velocities of the snapshot (end of
 // the step, half a step later than the force kernel saw them, which only
 // touches the damping term). Summed in particle-id order: deterministic.
 #include <vector>

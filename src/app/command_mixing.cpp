@@ -1,12 +1,12 @@
 // `grainstorm mixing`: the scene's mixing analysis over snapshots already
 // written, e.g. again with other samples (--layers) after a run.
-#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
 #include "analysis/mixing.hpp"
 #include "analysis/mixing_log.hpp"
 #include "app/commands.hpp"
+#include "contact/contact_time.hpp"
 #include "io/h5_snapshot.hpp"
 #include "scene/scene_loader.hpp"
 
@@ -24,8 +24,7 @@ void fill_masses(ParticleSnapshot& s, const SceneSpec& scene, const std::string&
     const std::size_t material = s.material.empty() ? 0 : s.material[i];
     if (material >= scene.materials.size())
       throw std::invalid_argument(path + ": particle material " + std::to_string(material) + " is not in the scene");
-    const double r = double(s.radius[i]);
-    s.mass[i] = float(4.0 / 3.0 * M_PI * r * r * r * scene.materials[material].density);
+    s.mass[i] = float(sphere_mass(double(s.radius[i]), scene.materials[material].density));
   }
 }
 

@@ -94,7 +94,7 @@ void RunOutput::snapshot(const Simulation& sim) {
     write_snapshot(directory_ + "/" + name, s, fields_, sim.walls(), m);
     series_.push_back(xdmf_entry(name, s, fields_));
     write_xdmf_series(directory_ + "/particles.xdmf", series_);
-    const MeshSet& meshes = sim.meshes();
+    const MeshSet meshes = sim.meshes();
     if (meshes.n_triangles() > 0) {
       const std::string mesh_file = meshes_h5_name(s.step);
       write_meshes_h5(directory_ + "/" + mesh_file, meshes, s.time, s.step);

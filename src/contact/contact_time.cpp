@@ -31,9 +31,9 @@ std::vector<double> smallest_radius(const SceneSpec& s) {
   return r;
 }
 
-double sphere_mass(double r, double rho) { return 4.0 / 3.0 * M_PI * r * r * r * rho; }
-
 }  // namespace
+
+double sphere_mass(double r, double rho) { return 4.0 / 3.0 * M_PI * r * r * r * rho; }
 
 double critical_contact_time(const SceneSpec& s) {
   const std::vector<double> r = smallest_radius(s);

@@ -3,6 +3,10 @@
 
 namespace gs {
 
+// Mass of a sphere of radius r and density rho (a particle's stored mass is
+// this, rounded to fp32).
+double sphere_mass(double r, double rho);
+
 // Damping ratio zeta of a linear spring-dashpot whose normal coefficient of
 // restitution is e: e = exp(-pi zeta / sqrt(1 - zeta^2)).
 double damping_ratio_from_restitution(double restitution);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "contact/contact_time.hpp"
 #include "scene/position_resolution.hpp"
 #include "walls/wall_motion.hpp"
 
@@ -141,7 +142,7 @@ void Simulation::upload(const std::vector<ParticleInit>& particles) {
   std::vector<Quaternion> orientation(n, Quaternion{1, 0, 0, 0});
   for (std::size_t i = 0; i < n; ++i) {
     const ParticleInit& p = particles[i];
-    const double m = 4.0 / 3.0 * M_PI * p.radius * p.radius * p.radius * scene_.materials[p.material].density;
+    const double m = sphere_mass(p.radius, scene_.materials[p.material].density);
     id[i] = p.id;
     material[i] = std::uint8_t(p.material);
     marker[i] = p.marker;
@@ -177,11 +178,17 @@ void Simulation::move_walls(double t) {
   kernels_->set_walls(walls_);
 }
 
-// Poses from the absolute time, on the host (for output) and on the backend.
+// Poses from the absolute time; the backend poses its vertices from them.
 void Simulation::pose_meshes(double t) {
   if (meshes_.n_triangles() == 0) return;
-  move_meshes(meshes_, t);
+  set_mesh_poses(meshes_, t);
   kernels_->set_mesh_pose(meshes_);
+}
+
+MeshSet Simulation::meshes() const {
+  MeshSet posed = meshes_;
+  move_meshes(posed, time_);
+  return posed;
 }
 
 std::vector<MeshLoad> Simulation::mesh_loads() const {

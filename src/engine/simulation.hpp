@@ -66,7 +66,7 @@ class Simulation {
   Index particle_count() const { return store_.n_owned; }  // owned by this rank
   RankExchange* exchange() const { return exchange_.get(); }
   const std::vector<Wall>& walls() const { return walls_; }  // posed at time()
-  const MeshSet& meshes() const { return meshes_; }           // posed at time()
+  MeshSet meshes() const;  // posed at time(), vertices included (for output)
   // Load of this rank's owned particles on each mesh (force, and torque about
   // the mesh's rotation centre), from the last force computation, summed in
   // particle id order (deterministic). With several ranks the caller sums

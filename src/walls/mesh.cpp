@@ -93,9 +93,13 @@ std::int32_t add_mesh(MeshSet& set, const TriangleMesh& mesh, std::int32_t mater
   return id;
 }
 
+void set_mesh_poses(MeshSet& set, double time) {
+  for (std::int32_t m = 0; m < set.n_meshes(); ++m) set.pose[m] = mesh_pose(set.motion[m], time);
+}
+
 void move_meshes(MeshSet& set, double time) {
+  set_mesh_poses(set, time);
   for (std::int32_t m = 0; m < set.n_meshes(); ++m) {
-    set.pose[m] = mesh_pose(set.motion[m], time);
     pose_vertices(set.pose[m], set.reference.data(), set.vertex.data(), std::size_t(set.vertex_begin[m]),
                   std::size_t(set.vertex_begin[m + 1]));
   }

@@ -125,6 +125,9 @@ std::int32_t add_mesh(MeshSet& set, const TriangleMesh& mesh, std::int32_t mater
 // Moves every mesh to its pose at absolute time `time` (from the reference
 // vertices; nothing accumulates).
 void move_meshes(MeshSet& set, double time);
+// Only the poses at `time` (a run's device poses the vertices itself; the
+// host's are needed for output alone).
+void set_mesh_poses(MeshSet& set, double time);
 
 // Triangles per cell, CSR, of one grid per mesh laid over the mesh in its
 // reference pose. A rigidly moving mesh is binned once and never again: a
