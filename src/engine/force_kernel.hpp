@@ -13,6 +13,7 @@
 #include "neighbor/cell_grid.hpp"
 #include "walls/sphere_triangle.hpp"
 #include "walls/wall_geometry.hpp"
+#include "walls/wall_screen.hpp"
 
 namespace gs {
 
@@ -56,6 +57,7 @@ struct ForceKernel {
   // Interactions
   PairTable<Real> pairs;
   const Wall* walls;
+  const WallScreen* wall_screens;  // per wall: the first, cheap test
   int n_walls;
   MeshView meshes;          // n_triangles == 0: the scene has no mesh, the loop is skipped
   MeshLoad* mesh_load;      // per owned particle x mesh: its load on the mesh; null without meshes
@@ -95,7 +97,9 @@ struct ForceKernel {
         }
       }
     }
-    for (int w = 0; w < n_walls; ++w) add_wall_contact(i, w, xi, total, touched);
+    const double ri = radius[i];
+    for (int w = 0; w < n_walls; ++w)
+      if (wall_may_touch(wall_screens[w], xi, ri)) add_wall_contact(i, w, xi, total, touched);
     // One uniform branch per particle when the scene has no mesh (docs/MESHES.md, cost).
     if (meshes.n_triangles > 0) add_mesh_contacts(i, xi, total, touched);
     if constexpr (kHistory) history.release_untouched(i, touched);

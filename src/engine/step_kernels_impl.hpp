@@ -62,7 +62,7 @@ class StepKernelsImpl final : public StepKernels {
 
  public:
   StepKernelsImpl(const PairTableHost& table, int slots)
-      : pairs_(Exec::backend), walls_(Exec::backend), meshes_(Exec::backend), fault_(Exec::backend, 1),
+      : pairs_(Exec::backend), walls_(Exec::backend), wall_screens_(Exec::backend), meshes_(Exec::backend), fault_(Exec::backend, 1),
         cells_(Exec::backend) {
     upload_pairs(table);
     fault_.zero();
@@ -83,6 +83,9 @@ class StepKernelsImpl final : public StepKernels {
 
   void set_walls(const std::vector<Wall>& walls) override {
     walls_.from_host(walls);
+    std::vector<WallScreen> screens;
+    for (const Wall& w : walls) screens.push_back(wall_screen(w));
+    wall_screens_.from_host(screens);
     n_walls_ = int(walls.size());
   }
   void set_meshes(const MeshSet& meshes) override {
@@ -93,9 +96,8 @@ class StepKernelsImpl final : public StepKernels {
   void set_mesh_pose(const MeshSet& meshes) override {
     for (std::int32_t m = 0; m < meshes.n_meshes(); ++m) {
       const std::int32_t begin = meshes.vertex_begin[m], end = meshes.vertex_begin[m + 1];
-      Exec::parallel_for(Index(end - begin), PoseVertices{meshes.pose[m], meshes_.reference.data(),
-                                                          meshes_.vertex.data(), std::size_t(begin)});
-      Exec::parallel_for(1, SetPose{meshes.pose[m], meshes_.pose.data() + m});
+      Exec::parallel_for(Index(end - begin), PoseVertices{meshes.pose[m], meshes_.reference.data(), meshes_.vertex.data(),
+                                                          std::size_t(begin), meshes_.pose.data() + m});
     }
   }
   void set_mesh_bins(const MeshBins& bins) override { meshes_.set_bins(bins); }
@@ -119,7 +121,7 @@ class StepKernelsImpl final : public StepKernels {
                                         s.position.data(), s.velocity.data(), s.angular_velocity.data(),
                                         cells_.grid, cells_.sorted.data(), cells_.cell_begin.data(),
                                         PairTable<Real>{pairs_.data(), n_materials_},
-                                        walls_.data(), n_walls_, meshes_.view(), meshes_.loads(),
+                                        walls_.data(), wall_screens_.data(), n_walls_, meshes_.view(), meshes_.loads(),
                                         slot_table(), forces_.force.data(),
                                         kTorque ? forces_.torque.data() : nullptr, Real(dt), fault_.data(), step};
     Exec::parallel_for(s.n_owned, k);
@@ -167,7 +169,7 @@ class StepKernelsImpl final : public StepKernels {
 
   std::size_t bytes() const override {
     return forces_.force.bytes() + forces_.torque.bytes() + history_.partner.bytes() + history_.tangential.bytes() +
-           history_.rolling.bytes() + cells_.bytes() + pairs_.bytes() + walls_.bytes() + staging_.bytes();
+           history_.rolling.bytes() + cells_.bytes() + pairs_.bytes() + walls_.bytes() + wall_screens_.bytes() + staging_.bytes();
   }
 
  private:
@@ -200,6 +202,7 @@ class StepKernelsImpl final : public StepKernels {
   DeviceArray<PairParams<Real>> pairs_;
   int n_materials_ = 0;
   DeviceArray<Wall> walls_;
+  DeviceArray<WallScreen> wall_screens_;  // per wall, at the pose walls_ holds
   int n_walls_ = 0;
   DeviceMeshes meshes_;
   DeviceArray<Fault> fault_;

@@ -67,20 +67,19 @@ GS_HD GS_INLINE Vec3d mesh_point_velocity(const MeshPose& p, const Vec3d& x) {
 
 // Sets current[k] = pose_point(pose, reference[k]) for k in [begin, end);
 // one functor, run by a host loop here and by Exec::parallel_for on a device.
+// Item 0 also stores the pose where the force kernel reads it (`pose_out`,
+// when not null): one launch per mesh and step, and no copy from the host,
+// which would wait for the device every step.
 struct PoseVertices {
   MeshPose pose;
   const Vec3d* reference;
   Vec3d* current;
   std::size_t begin;
-  GS_HD void operator()(std::size_t k) const { current[begin + k] = pose_point(pose, reference[begin + k]); }
-};
-
-// Stores one mesh's pose where kernels read it (a launch, not a copy: a copy
-// from the host would wait for the device every step).
-struct SetPose {
-  MeshPose pose;
-  MeshPose* to;
-  GS_HD void operator()(std::size_t) const { *to = pose; }
+  MeshPose* pose_out = nullptr;
+  GS_HD void operator()(std::size_t k) const {
+    if (k == 0 && pose_out) *pose_out = pose;
+    current[begin + k] = pose_point(pose, reference[begin + k]);
+  }
 };
 
 void pose_vertices(const MeshPose& pose, const Vec3d* reference, Vec3d* current, std::size_t begin,
