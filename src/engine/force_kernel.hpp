@@ -71,6 +71,12 @@ struct ForceKernel {
 
   static constexpr bool kTorque = (Effects & (kFriction | kRollingResistance)) != 0;
   static constexpr bool kHistory = SlotTable<Real, Effects>::kActive;
+  // GPU launch hint: four blocks of 128 threads resident per multiprocessor,
+  // which caps the kernel at 128 registers. The mesh path, which most
+  // threads never take, had raised the frictional kernel to 132 registers
+  // and so to three blocks: a quarter of the warps, and 17 % of the
+  // throughput of a bed without meshes (docs/PERFORMANCE.md).
+  static constexpr int kMinBlocksPerSM = 4;
   static constexpr int kAnySlot = -2;  // apply(): find the contact's slot, or claim one
   // Mesh contacts without a slot wait until the others have taken theirs (at
   // most this many per particle; more claim a slot at once).

@@ -1,5 +1,7 @@
 #pragma once
 // CUDA execution policy: one thread per particle, CUB radix sort for keys.
+#include <type_traits>
+
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_select.cuh>
 #include <thrust/iterator/counting_iterator.h>
@@ -11,15 +13,34 @@
 
 namespace gs {
 
+constexpr int kCudaBlock = 128;
+
 template <class F>
 __global__ void for_each_kernel(Index n, F f) {
   const Index i = Index(blockIdx.x) * Index(blockDim.x) + Index(threadIdx.x);
   if (i < n) f(i);
 }
 
+// The same, for a functor that asks for at least MinBlocks resident blocks
+// per multiprocessor (F::kMinBlocksPerSM): ptxas then caps its registers.
+template <class F, int MinBlocks>
+__global__ void __launch_bounds__(kCudaBlock, MinBlocks) for_each_kernel_bounded(Index n, F f) {
+  const Index i = Index(blockIdx.x) * Index(blockDim.x) + Index(threadIdx.x);
+  if (i < n) f(i);
+}
+
+template <class F, class = void>
+struct MinBlocksPerSM {
+  static constexpr int value = 0;
+};
+template <class F>
+struct MinBlocksPerSM<F, std::void_t<decltype(F::kMinBlocksPerSM)>> {
+  static constexpr int value = F::kMinBlocksPerSM;
+};
+
 struct CudaExec {
   static constexpr Backend backend = Backend::cuda;
-  static constexpr int kBlock = 128;
+  static constexpr int kBlock = kCudaBlock;
   // Neighbouring threads read the same slot of neighbouring particles: coalesced.
   static constexpr HistoryOrder history_order = HistoryOrder::slot_major;
   // Cell offsets one thread per cell, so no thread walks a long empty stretch.
@@ -28,7 +49,11 @@ struct CudaExec {
   template <class F>
   static void parallel_for(Index n, const F& f) {
     if (n <= 0) return;
-    for_each_kernel<<<unsigned((n + kBlock - 1) / kBlock), kBlock>>>(n, f);
+    const unsigned blocks = unsigned((n + kBlock - 1) / kBlock);
+    if constexpr (MinBlocksPerSM<F>::value > 0)
+      for_each_kernel_bounded<F, MinBlocksPerSM<F>::value><<<blocks, kBlock>>>(n, f);
+    else
+      for_each_kernel<<<blocks, kBlock>>>(n, f);
     GS_CUDA_CHECK(cudaGetLastError());
   }
 
