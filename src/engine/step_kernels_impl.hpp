@@ -62,8 +62,8 @@ class StepKernelsImpl final : public StepKernels {
 
  public:
   StepKernelsImpl(const PairTableHost& table, int slots)
-      : pairs_(Exec::backend), walls_(Exec::backend), wall_screens_(Exec::backend), meshes_(Exec::backend), fault_(Exec::backend, 1),
-        cells_(Exec::backend) {
+      : pairs_(Exec::backend), walls_(Exec::backend), wall_screens_(Exec::backend), meshes_(Exec::backend),
+        fault_(Exec::backend, 1), cells_(Exec::backend) {
     upload_pairs(table);
     fault_.zero();
     history_.slots = kHistory ? slots : 0;
@@ -96,8 +96,9 @@ class StepKernelsImpl final : public StepKernels {
   void set_mesh_pose(const MeshSet& meshes) override {
     for (std::int32_t m = 0; m < meshes.n_meshes(); ++m) {
       const std::int32_t begin = meshes.vertex_begin[m], end = meshes.vertex_begin[m + 1];
-      Exec::parallel_for(Index(end - begin), PoseVertices{meshes.pose[m], meshes_.reference.data(), meshes_.vertex.data(),
-                                                          std::size_t(begin), meshes_.pose.data() + m});
+      Exec::parallel_for(Index(end - begin), PoseVertices{meshes.pose[m], meshes_.reference.data(),
+                                                          meshes_.vertex.data(), std::size_t(begin),
+                                                          meshes_.pose.data() + m});
     }
   }
   void set_mesh_bins(const MeshBins& bins) override { meshes_.set_bins(bins); }
@@ -169,7 +170,8 @@ class StepKernelsImpl final : public StepKernels {
 
   std::size_t bytes() const override {
     return forces_.force.bytes() + forces_.torque.bytes() + history_.partner.bytes() + history_.tangential.bytes() +
-           history_.rolling.bytes() + cells_.bytes() + pairs_.bytes() + walls_.bytes() + wall_screens_.bytes() + staging_.bytes();
+           history_.rolling.bytes() + cells_.bytes() + pairs_.bytes() + walls_.bytes() + wall_screens_.bytes() +
+           staging_.bytes();
   }
 
  private:

@@ -83,9 +83,10 @@ TEST_P(StabilityMeshEdgesTest, PouredOntoImpellerThenTurned) {
   const ImpellerSpec spec;
   // The floor 3.5 mm below the hub: spheres on it pass under the blades
   // (no jamming between blade and floor, which the mixer's 2 mm gap allows).
-  const double floor = -0.0035, fill_top = spec.hub_height + 2 * kRadius + short_or_long(0.01, 0.05);
+  const double floor = -0.0035, fill_top = spec.hub_height + 2 * kRadius + short_or_long(0.01, 0.16);
   scene.domain_min = {-kHalfWidth - 0.001, -kHalfWidth - 0.001, floor - 0.001};
-  scene.domain_max = {kHalfWidth + 0.001, kHalfWidth + 0.001, spec.hub_height + spec.shaft_length + 0.01};
+  scene.domain_max = {kHalfWidth + 0.001, kHalfWidth + 0.001,
+                      std::max(spec.hub_height + spec.shaft_length, fill_top) + 0.01};
   scene.walls = box_walls({-kHalfWidth, -kHalfWidth, floor}, {kHalfWidth, kHalfWidth, scene.domain_max.z - 0.001});
   TriangleMesh impeller = make_impeller(spec);
   impeller.name = "impeller";
