@@ -12,6 +12,7 @@
 //   settle_bench [--n N] [--steps S] [--backend cpu|cuda] [--precision fp32|fp64|fp32_full]
 //                [--effects none|friction|rolling|cohesion] [--model linear|hertz]
 //                [--mesh impeller]   (the seed's impeller turning at 30 rpm in the bed)
+//                [--skin S]          (CPU Verlet list skin in largest diameters, default 0.1)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -35,6 +36,7 @@ struct Options {
   unsigned effects = gs::kFriction;
   gs::ContactModel model = gs::ContactModel::linear;
   bool mesh = false;  // the seed's impeller turning at 30 rpm in the bed
+  gs::RunOptions run;
 };
 
 gs::Precision parse_precision(const std::string& s) {
@@ -64,6 +66,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--effects") o.effects = parse_effects(v);
     else if (a == "--model") o.model = v == "hertz" ? gs::ContactModel::hertz_mindlin : gs::ContactModel::linear;
     else if (a == "--mesh") o.mesh = v == "impeller";
+    else if (a == "--skin") o.run.verlet_skin = std::stod(v);
     else throw std::invalid_argument("unknown option " + a);
   }
   return o;
@@ -140,7 +143,9 @@ int main(int argc, char** argv) {
   try {
     const Options o = parse(argc, argv);
     const gs::SceneSpec scene = bed_scene(o);
-    gs::Simulation sim(scene, {o.backend});
+    gs::RunOptions run = o.run;
+    run.backend = o.backend;
+    gs::Simulation sim(scene, run);
     sim.run(20);  // warm up: first sorts, history slots claimed
     const auto t0 = std::chrono::steady_clock::now();
     sim.run(o.steps);

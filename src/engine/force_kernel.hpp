@@ -1,16 +1,15 @@
 #pragma once
 // Contact forces, one thread per owned particle (as the seed). Each thread
-// visits the 27 cells around its particle in a fixed order (dz, dy, dx), and
-// inside a cell the partners in ascending global id (the cell list is sorted
-// by (cell, id)), then the walls in scene order: the sum of a particle's
-// contact forces is therefore taken in one canonical order, independent of
-// thread scheduling and of how particles are split across ranks. The three
-// cells dx = -1, 0, 1 of a row are consecutive in the cell list, so a row is
-// read as one range, in that same order. Triangle meshes come last, their
-// contacts in ascending triangle order of the particle's cell list.
+// sums its particle's contacts in one canonical order, independent of thread
+// scheduling and of how particles are split across ranks: first the particle
+// partners in the order the candidate source gives them (CellCandidates:
+// cell by cell in a fixed order, by ascending id in a cell; ListCandidates:
+// by ascending id), then the walls in scene order, then triangle meshes, their
+// contacts in ascending triangle order of the particle's mesh bin.
 #include "contact/contact_slots.hpp"
 #include "core/materials.hpp"
-#include "neighbor/cell_grid.hpp"
+#include "neighbor/cell_list.hpp"
+#include "neighbor/verlet_list.hpp"
 #include "walls/sphere_triangle.hpp"
 #include "walls/wall_geometry.hpp"
 #include "walls/wall_screen.hpp"
@@ -40,7 +39,7 @@ struct SameMeshContact {
   }
 };
 
-template <class Real, ContactModel Model, unsigned Effects>
+template <class Real, ContactModel Model, unsigned Effects, class Candidates = CellCandidates>
 struct ForceKernel {
   // Particles (owned and ghosts)
   const ParticleId* id;
@@ -50,10 +49,7 @@ struct ForceKernel {
   const Vec3d* position;
   const Vec3d* velocity;
   const Vec3d* angular_velocity;
-  // Cell list
-  CellGrid grid;
-  const Index* sorted;      // particle indices in (cell, id) order
-  const Index* cell_begin;  // per cell + 1: cell c is sorted[cell_begin[c], cell_begin[c + 1])
+  Candidates candidates;  // contact partners of a particle, in canonical order
   // Interactions
   PairTable<Real> pairs;
   const Wall* walls;
@@ -86,23 +82,8 @@ struct ForceKernel {
     ContactLoad<Real> total;
     unsigned touched = 0;
     const Vec3d xi = position[i];
-    const CellCoord c = grid.coord(xi);
-    const int x_first = c.x > 0 ? c.x - 1 : 0;
-    const int x_last = c.x + 1 < grid.dims[0] ? c.x + 1 : c.x;
-    for (int dz = -1; dz <= 1; ++dz) {
-      const int z = c.z + dz;
-      if (z < 0 || z >= grid.dims[2]) continue;
-      for (int dy = -1; dy <= 1; ++dy) {
-        const int y = c.y + dy;
-        if (y < 0 || y >= grid.dims[1]) continue;
-        const std::int64_t row = grid.linear(CellCoord{0, y, z});
-        const Index end = cell_begin[row + x_last + 1];
-        for (Index k = cell_begin[row + x_first]; k < end; ++k) {
-          const Index j = sorted[k];
-          if (j != i) add_particle_contact(i, j, xi, total, touched);
-        }
-      }
-    }
+    ParticleVisitor visit{this, i, xi, &total, &touched};
+    candidates.for_each(i, xi, visit);
     const double ri = radius[i];
     for (int w = 0; w < n_walls; ++w)
       if (wall_may_touch(wall_screens[w], xi, ri)) add_wall_contact(i, w, xi, total, touched);
@@ -114,6 +95,18 @@ struct ForceKernel {
   }
 
  private:
+  // Visitor of the candidate source: one possible partner j of particle i.
+  struct ParticleVisitor {
+    const ForceKernel* kernel;
+    Index i;
+    Vec3d xi;
+    ContactLoad<Real>* total;
+    unsigned* touched;
+    GS_HD void operator()(Index j) const {
+      if (j != i) kernel->add_particle_contact(i, j, xi, *total, *touched);
+    }
+  };
+
   // Visitor of for_each_mesh_contact: one mesh contact of particle i. A
   // contact whose feature already has a history slot is applied at once; a
   // new one waits until every such contact has marked its slot touched, so

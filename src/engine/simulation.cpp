@@ -46,7 +46,7 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
     upload(scene.particles);
   }
   // Forces at t = 0 for the first half kick.
-  rebuild_cells();
+  rebuild_neighbours();
   kernels_->compute_forces(store_, 0.0, 0);
   check_fault();
 }
@@ -57,7 +57,7 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
   set_up(scene);
   restore(restart);
   if (exchange_) exchange_->refresh_ghosts(store_, *kernels_);
-  rebuild_cells();
+  rebuild_neighbours();
   check_fault();
 }
 
@@ -74,7 +74,9 @@ void Simulation::set_up(const SceneSpec& scene) {
 
   kernels_ = make_step_kernels({b, scene.precision, scene.model, scene.effects}, make_pair_table(scene),
                                scene.contact_slots);
-  grid_ = make_cell_grid(scene.domain_min, scene.domain_max, 2.0 * largest_radius(scene.particles));
+  const double diameter = 2.0 * largest_radius(scene.particles);
+  skin_ = kernels_->uses_verlet_list() ? options_.verlet_skin * diameter : 0.0;
+  grid_ = make_cell_grid(scene.domain_min, scene.domain_max, diameter + skin_);
   walls_ = scene.walls;
   for (const Wall& w : walls_) walls_move_ = walls_move_ || norm2(w.velocity) > 0 || norm2(w.angular_velocity) > 0;
   meshes_ = scene.meshes;
@@ -96,6 +98,7 @@ void Simulation::set_up(const SceneSpec& scene) {
 // and last forces; walls are posed from the absolute time, as in the run.
 void Simulation::restore(const RestartState& r) {
   step_ = r.step;
+  last_reorder_ = r.step;
   time_ = r.time;
   move_walls(time_);
   pose_meshes(time_);
@@ -209,7 +212,7 @@ std::vector<MeshLoad> Simulation::mesh_loads() const {
   return total;
 }
 
-void Simulation::rebuild_cells() { kernels_->build_cell_list(store_, grid_); }
+void Simulation::rebuild_neighbours() { kernels_->build_neighbours(store_, grid_, skin_); }
 
 void Simulation::run(long long steps) {
   const auto start = Clock::now();
@@ -227,11 +230,16 @@ void Simulation::run(long long steps) {
     timings_.integrate += phase_seconds(t0);
     if (exchange_) step_particles_between_ranks();
 
+    // Ghosts are refreshed every step, so with ranks the contacts are found
+    // anew every step; a single rank with a Verlet list keeps it while it
+    // covers every contact, and re-sorts memory only when it rebuilds it.
     t0 = Clock::now();
-    if (options_.reorder_interval > 0 && (step_ + 1) % options_.reorder_interval == 0) {
+    const bool stale = exchange_ || kernels_->neighbours_stale(store_);
+    if (stale && options_.reorder_interval > 0 && step_ + 1 - last_reorder_ >= options_.reorder_interval) {
       store_.drop_ghosts();
-      rebuild_cells();
+      kernels_->build_cell_list(store_, grid_);
       kernels_->reorder_by_cells(store_);
+      last_reorder_ = step_ + 1;
     }
     timings_.neighbours += phase_seconds(t0);
     if (exchange_) {
@@ -240,7 +248,7 @@ void Simulation::run(long long steps) {
       timings_.exchange += phase_seconds(t0);
     }
     t0 = Clock::now();
-    rebuild_cells();
+    if (stale) rebuild_neighbours();
     timings_.neighbours += phase_seconds(t0);
 
     t0 = Clock::now();

@@ -43,6 +43,7 @@ struct RestartState {
 struct RunOptions {
   Backend backend = Backend::cpu;
   int reorder_interval = 25;     // steps between re-sorting particle memory by cell
+  double verlet_skin = 0.1;      // Verlet list skin (CPU), in largest particle diameters
   int fault_check_interval = 50; // steps between reading the fault flag
   int rebalance_interval = 500;  // steps between load-balance checks (several ranks)
 };
@@ -89,7 +90,7 @@ class Simulation {
   void restore(const RestartState& restart);
   void move_walls(double t);
   void pose_meshes(double t);
-  void rebuild_cells();
+  void rebuild_neighbours();
   void step_particles_between_ranks();
   void check_fault();
   double phase_seconds(std::chrono::steady_clock::time_point start) const;
@@ -101,12 +102,14 @@ class Simulation {
   std::unique_ptr<StepKernels> kernels_;
   std::shared_ptr<RankExchange> exchange_;
   CellGrid grid_;
+  double skin_ = 0;  // Verlet list skin [m]; 0 without a list
   std::vector<Wall> walls_;
   bool walls_move_ = false;
   MeshSet meshes_;
   bool meshes_move_ = false;
   double time_ = 0;
   long long step_ = 0;
+  long long last_reorder_ = 0;  // step of the last memory re-sort
   StepTimings timings_;  // sampled: the timed steps' phases
   double run_seconds_ = 0;  // all of run(), measured
 };

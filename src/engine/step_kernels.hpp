@@ -37,6 +37,16 @@ class StepKernels {
 
   virtual void kick_drift(ParticleStore& s, const IntegrationParams& p) = 0;
   virtual void build_cell_list(ParticleStore& s, const CellGrid& grid) = 0;
+  // Whether contacts come from a Verlet list (the CPU) rather than from the
+  // cell list every step: the grid's cells must then hold the skin too.
+  virtual bool uses_verlet_list() const = 0;
+  // What the force computation needs to find contacts: the cell list, and
+  // with a Verlet list the list too, of particles within r_i + r_j + skin.
+  virtual void build_neighbours(ParticleStore& s, const CellGrid& grid, double skin) = 0;
+  // Whether build_neighbours must run before the next force computation:
+  // always without a Verlet list; with one, when the store has changed since
+  // the build or a particle has moved more than half the skin.
+  virtual bool neighbours_stale(const ParticleStore& s) const = 0;
   virtual void compute_forces(ParticleStore& s, double dt, long long step) = 0;
   virtual void kick(ParticleStore& s, const IntegrationParams& p) = 0;
   // Sets the marker of each owned particle by its side of the plane.
@@ -82,7 +92,7 @@ class StepKernels {
   virtual void set_forces(const ParticleStore& s, const std::vector<Vec3d>& force,
                           const std::vector<Vec3d>& torque) = 0;
 
-  virtual std::size_t bytes() const = 0;  // memory held by forces, history and cell list
+  virtual std::size_t bytes() const = 0;  // memory held by forces, history, cell and Verlet lists
 };
 
 struct KernelChoice {

@@ -115,17 +115,27 @@ class StepKernelsImpl final : public StepKernels {
 
   void build_cell_list(ParticleStore& s, const CellGrid& grid) override {
     build_cells<Exec>(cells_, s.position.data(), s.id.data(), s.size(), grid);
+    verlet_.valid = false;
+  }
+  bool uses_verlet_list() const override { return Exec::verlet_list; }
+  void build_neighbours(ParticleStore& s, const CellGrid& grid, double skin) override {
+    build_cell_list(s, grid);
+    if constexpr (Exec::verlet_list)
+      build_verlet_list<Exec>(verlet_, cells_, s.position.data(), s.radius.data(), s.id.data(), s.n_owned, s.size(),
+                              skin);
+  }
+  bool neighbours_stale(const ParticleStore& s) const override {
+    if constexpr (Exec::verlet_list) return verlet_list_stale<Exec>(verlet_, s.position.data(), s.n_owned, s.size());
+    return true;
   }
 
   void compute_forces(ParticleStore& s, double dt, long long step) override {
-    ForceKernel<Real, Model, Effects> k{s.id.data(), s.material.data(), s.radius.data(), s.mass.data(),
-                                        s.position.data(), s.velocity.data(), s.angular_velocity.data(),
-                                        cells_.grid, cells_.sorted.data(), cells_.cell_begin.data(),
-                                        PairTable<Real>{pairs_.data(), n_materials_},
-                                        walls_.data(), wall_screens_.data(), n_walls_, meshes_.view(), meshes_.loads(),
-                                        slot_table(), forces_.force.data(),
-                                        kTorque ? forces_.torque.data() : nullptr, Real(dt), fault_.data(), step};
-    Exec::parallel_for(s.n_owned, k);
+    if constexpr (Exec::verlet_list) {
+      if (!verlet_.valid) throw std::logic_error("compute_forces before build_neighbours");
+      launch_forces(s, verlet_.candidates(), dt, step);
+    } else {
+      launch_forces(s, CellCandidates{cells_.grid, cells_.sorted.data(), cells_.cell_begin.data()}, dt, step);
+    }
   }
 
   void mark_by_plane(ParticleStore& s, const MarkingSpec& m) override {
@@ -170,11 +180,23 @@ class StepKernelsImpl final : public StepKernels {
 
   std::size_t bytes() const override {
     return forces_.force.bytes() + forces_.torque.bytes() + history_.partner.bytes() + history_.tangential.bytes() +
-           history_.rolling.bytes() + cells_.bytes() + pairs_.bytes() + walls_.bytes() + wall_screens_.bytes() +
+           history_.rolling.bytes() + cells_.bytes() + verlet_.bytes() + pairs_.bytes() + walls_.bytes() + wall_screens_.bytes() +
            staging_.bytes();
   }
 
  private:
+  template <class Candidates>
+  void launch_forces(ParticleStore& s, const Candidates& candidates, double dt, long long step) {
+    ForceKernel<Real, Model, Effects, Candidates> k{s.id.data(), s.material.data(), s.radius.data(), s.mass.data(),
+                                                    s.position.data(), s.velocity.data(),
+                                                    s.angular_velocity.data(), candidates,
+                                                    PairTable<Real>{pairs_.data(), n_materials_}, walls_.data(),
+                                                    wall_screens_.data(), n_walls_, meshes_.view(), meshes_.loads(),
+                                                    slot_table(), forces_.force.data(),
+                                                    kTorque ? forces_.torque.data() : nullptr, Real(dt),
+                                                    fault_.data(), step};
+    Exec::parallel_for(s.n_owned, k);
+  }
   // What a message of `count` particles carries from this run.
   MessageHeader message_header(Index count, bool with_history) const;
   HalfKick<Real> half_kick(ParticleStore& s, const IntegrationParams& p) {
@@ -209,6 +231,7 @@ class StepKernelsImpl final : public StepKernels {
   DeviceMeshes meshes_;
   DeviceArray<Fault> fault_;
   CellList cells_;
+  VerletList verlet_{Exec::backend};  // empty where Exec::verlet_list is false
   ForceArrays<Real> forces_;
   ContactHistory<Real> history_;
   // Reused staging for data movement (reorder, migration, ghosts).

@@ -48,6 +48,7 @@ void gather_slots_in_place(DeviceArray<T>& a, const Index* order, Index n, int s
 template <class Exec, class Real, ContactModel Model, unsigned Effects>
 void StepKernelsImpl<Exec, Real, Model, Effects>::reorder_by_cells(ParticleStore& s) {
   if (s.n_ghost != 0) throw std::logic_error("reorder_by_cells needs a cell list of owned particles only");
+  verlet_.valid = false;
   const Index n = s.n_owned;
   const Index* order = cells_.sorted.data();
   DeviceArray<unsigned char>& tmp = staging_;

@@ -154,6 +154,7 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::unpack(ParticleStore& s, const
     throw std::runtime_error("arriving particles carry " + std::to_string(h.slots) + " history slots of " +
                              std::to_string(h.spring_bytes) + "-byte springs; this run uses " +
                              std::to_string(want.slots) + " of " + std::to_string(want.spring_bytes));
+  verlet_.valid = false;
   const MessageLayout at(h);
   const std::size_t first = std::size_t(s.size());
   const Index m = Index(h.count);
@@ -184,6 +185,7 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::unpack(ParticleStore& s, const
 
 template <class Exec, class Real, ContactModel Model, unsigned Effects>
 void StepKernelsImpl<Exec, Real, Model, Effects>::keep_owned(ParticleStore& s, const DeviceArray<Index>& order) {
+  verlet_.valid = false;
   const Index n = Index(order.size());
   DeviceArray<unsigned char>& tmp = staging_;
   gather_in_place<Exec>(s.id, order.data(), n, tmp);
@@ -210,6 +212,7 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::keep_owned(ParticleStore& s, c
 template <class Exec, class Real, ContactModel Model, unsigned Effects>
 void StepKernelsImpl<Exec, Real, Model, Effects>::append(ParticleStore& s, const ParticleRecords& r, bool as_ghosts) {
   if (!as_ghosts && s.n_ghost != 0) throw std::logic_error("owned particles can only be appended before ghosts");
+  verlet_.valid = false;
   const std::size_t first = std::size_t(s.size());
   append_from_host(s.id, r.id, first);
   append_from_host(s.material, r.material, first);

@@ -76,6 +76,35 @@ struct CellBeginsByCell {
   }
 };
 
+// Contact candidates of a particle from the cell list: every particle in the
+// 27 cells around the particle's cell, in a fixed order (dz, dy, dx) and, in
+// a cell, by ascending id (the list is sorted by (cell, id)). The three cells
+// dx = -1, 0, 1 of a row are consecutive in the list, so a row is read as one
+// range, in that same order. The particle itself is among them.
+struct CellCandidates {
+  CellGrid grid;
+  const Index* sorted;      // particle indices in (cell, id) order
+  const Index* cell_begin;  // per cell + 1: cell c is sorted[cell_begin[c], cell_begin[c + 1])
+
+  template <class Visit>
+  GS_HD void for_each(Index /*i*/, const Vec3d& xi, Visit& visit) const {
+    const CellCoord c = grid.coord(xi);
+    const int x_first = c.x > 0 ? c.x - 1 : 0;
+    const int x_last = c.x + 1 < grid.dims[0] ? c.x + 1 : c.x;
+    for (int dz = -1; dz <= 1; ++dz) {
+      const int z = c.z + dz;
+      if (z < 0 || z >= grid.dims[2]) continue;
+      for (int dy = -1; dy <= 1; ++dy) {
+        const int y = c.y + dy;
+        if (y < 0 || y >= grid.dims[1]) continue;
+        const std::int64_t row = grid.linear(CellCoord{0, y, z});
+        const Index end = cell_begin[row + x_last + 1];
+        for (Index k = cell_begin[row + x_first]; k < end; ++k) visit(sorted[k]);
+      }
+    }
+  }
+};
+
 inline int bits_needed(std::uint64_t v) {
   int b = 0;
   while (v > 0) { ++b; v >>= 1; }

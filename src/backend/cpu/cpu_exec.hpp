@@ -4,6 +4,7 @@
 #include "backend/device_array.hpp"
 #include "core/history_layout.hpp"
 #include "neighbor/cell_list.hpp"
+#include "neighbor/verlet_list.hpp"
 
 namespace gs {
 
@@ -13,6 +14,8 @@ struct CpuExec {
   static constexpr HistoryOrder history_order = HistoryOrder::particle_major;
   // Cell offsets in one O(n + cells) walk over the sorted particles.
   static constexpr bool cell_begins_by_particle = true;
+  // Contacts from a Verlet list (neighbor/verlet_list.hpp says why).
+  static constexpr bool verlet_list = true;
 
   // Each thread calls its own copy of the functor: the compiler then knows
   // that no store through the functor's output pointers changes its fields,
@@ -40,6 +43,20 @@ struct CpuExec {
       if (pred(i)) out[m++] = i;
     return m;
   }
+
+  // Whether pred(i) holds for some i in [0, n).
+  template <class P>
+  static bool any(Index n, const P& pred) {
+    bool found = false;
+#pragma omp parallel for reduction(|| : found) schedule(static) if (n >= kSerialBelow)
+    for (Index i = 0; i < n; ++i) found = found || pred(i);
+    return found;
+  }
+
+  // Fills v.begin and v.list: the neighbours of particles [0, n_owned) among
+  // `cells`, each particle's in ascending id. One pass over the cells.
+  static void fill_verlet_list(VerletList& v, const CellCandidates& cells, const WithinSkin& near,
+                               const ParticleId* id, Index n_owned);
 
   // Sorts c.keys[0,n) ascending, carrying c.sorted along.
   static void sort_pairs(CellList& c, Index n);

@@ -45,6 +45,8 @@ struct CudaExec {
   static constexpr HistoryOrder history_order = HistoryOrder::slot_major;
   // Cell offsets one thread per cell, so no thread walks a long empty stretch.
   static constexpr bool cell_begins_by_particle = false;
+  // Contacts from the 27 cells every step (neighbor/verlet_list.hpp says why).
+  static constexpr bool verlet_list = false;
 
   template <class F>
   static void parallel_for(Index n, const F& f) {

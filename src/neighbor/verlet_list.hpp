@@ -1,0 +1,109 @@
+#pragma once
+// Verlet list of the CPU backend: for each owned particle, the particles
+// within r_i + r_j + skin when the list was built, found through the cell
+// list (whose cells are then at least a largest diameter plus the skin) and
+// kept in ascending id. It stays valid until some particle has moved more
+// than half the skin since the build: only then can a pair outside the list
+// have come into contact.
+//
+// Why ascending id: a particle's contact forces are summed in its list's
+// order, so that order must not depend on when the list was built (a rank
+// with ghosts rebuilds it every step, a single rank only when it must), nor
+// on where the particles were then. Ordered by the partners' global ids, the
+// sum is the same for any build schedule and any number of ranks.
+//
+// Why only the CPU: a core scanning 27 cells per particle and step spends
+// most of its time on candidates out of reach; the list holds only the near
+// ones and skips the per-step sort. A GPU hides that scan's
+// latency behind other warps, and the list (4 bytes per neighbour plus a
+// reference position) would not fit its 400-byte-per-particle budget.
+#include <cstdint>
+#include <vector>
+
+#include "backend/device_array.hpp"
+#include "core/types.hpp"
+#include "core/vec3.hpp"
+#include "neighbor/cell_list.hpp"
+
+namespace gs {
+
+// Contact candidates of particle i from the list, in ascending id.
+struct ListCandidates {
+  const Index* begin;  // per owned particle + 1: i's entries are list[begin[i], begin[i + 1])
+  const Index* list;   // store indices of the neighbours
+  template <class Visit>
+  GS_HD void for_each(Index i, const Vec3d& /*xi*/, Visit& visit) const {
+    for (Index k = begin[i]; k < begin[i + 1]; ++k) visit(list[k]);
+  }
+};
+
+struct VerletList {
+  explicit VerletList(Backend b) : begin(b), list(b), reference(b) {}
+
+  DeviceArray<Index> begin, list;
+  DeviceArray<Vec3d> reference;  // owned particles' positions at the build
+  std::vector<std::vector<Index>> parts;  // per thread, while building
+  double skin = 0;
+  Index n_owned = 0, n_total = 0;  // the store's layout at the build
+  bool valid = false;
+
+  ListCandidates candidates() const { return {begin.data(), list.data()}; }
+  std::size_t bytes() const { return begin.bytes() + list.bytes() + reference.bytes(); }
+};
+
+// Whether j (not i) lies within r_i + r_j + skin of x_i.
+struct WithinSkin {
+  const Vec3d* position;
+  const float* radius;
+  double skin;
+  GS_HD bool operator()(Index i, Index j, const Vec3d& xi) const {
+    if (j == i) return false;
+    const double reach = double(radius[i]) + double(radius[j]) + skin;
+    return norm2(xi - position[j]) < reach * reach;
+  }
+};
+
+// Orders a particle's neighbours out[0, n) by ascending id. Insertion sort: a
+// dozen entries, mostly in order already (a row of cells comes sorted by id).
+GS_HD GS_INLINE void sort_by_id(Index* out, Index n, const ParticleId* id) {
+  for (Index a = 1; a < n; ++a) {
+    const Index j = out[a];
+    Index b = a;
+    for (; b > 0 && id[out[b - 1]] > id[j]; --b) out[b] = out[b - 1];
+    out[b] = j;
+  }
+}
+
+// Whether owned particle i has moved more than `limit` since the build.
+struct MovedBeyond {
+  const Vec3d* position;
+  const Vec3d* reference;
+  double limit;
+  GS_HD bool operator()(Index i) const { return norm2(position[i] - reference[i]) > limit * limit; }
+};
+
+// Builds the list of the n_owned first particles against all n_total of the
+// cell list `cells` (owned and ghosts). Exec::fill_verlet_list finds the
+// neighbours; the list lives in host memory (the CPU backend only).
+template <class Exec>
+void build_verlet_list(VerletList& v, const CellList& cells, const Vec3d* position, const float* radius,
+                       const ParticleId* id, Index n_owned, Index n_total, double skin) {
+  static_assert(Exec::backend == Backend::cpu, "the Verlet list lives in host memory");
+  Exec::fill_verlet_list(v, CellCandidates{cells.grid, cells.sorted.data(), cells.cell_begin.data()},
+                         WithinSkin{position, radius, skin}, id, n_owned);
+  v.reference.resize(std::size_t(n_owned));
+  backend_copy(Exec::backend, v.reference.data(), position, std::size_t(n_owned) * sizeof(Vec3d));
+  v.skin = skin;
+  v.n_owned = n_owned;
+  v.n_total = n_total;
+  v.valid = true;
+}
+
+// Whether the list no longer covers every contact of the store.
+template <class Exec>
+bool verlet_list_stale(const VerletList& v, const Vec3d* position, Index n_owned, Index n_total) {
+  if (!v.valid || v.n_owned != n_owned || v.n_total != n_total) return true;
+  return Exec::any(n_owned, MovedBeyond{position, v.reference.data(), 0.5 * v.skin});
+}
+
+}  // namespace gs
