@@ -118,9 +118,11 @@ HostHistory StepKernelsImpl<Exec, Real, Model, Effects>::history(const ParticleS
   const std::vector<ParticleId> partner = history_.partner.to_host();
   const std::vector<Vec3<Real>> tangential = history_.tangential.to_host();
   const std::vector<Vec3<Real>> rolling = history_.rolling.to_host();
+  // Springs only of the effects the scene has: a checkpoint of a frictional
+  // bed without rolling resistance carries no rolling zeros.
   h.partner.resize(n * slots);
-  h.tangential.resize(n * slots);
-  h.rolling.resize(n * slots);
+  h.tangential.resize(tangential.empty() ? 0 : n * slots);
+  h.rolling.resize(rolling.empty() ? 0 : n * slots);
   for (Index i = 0; i < n; ++i)
     for (std::size_t k = 0; k < slots; ++k) {
       const std::size_t e = at.at(int(k), std::size_t(i));

@@ -99,6 +99,9 @@ TEST_P(HistoryDigestTest, CountsAndWallSpringsMatchTheWholeHistory) {
   sim.run(std::llround(0.1 / scene.time_step));
   const ParticleSnapshot s = sim.snapshot();
   const HostHistory all = sim.history();
+  // The springs of the scene's effects only: friction, no rolling resistance.
+  EXPECT_EQ(all.tangential.size(), all.partner.size());
+  EXPECT_TRUE(all.rolling.empty());
   const ParticleRecords on_walls = sim.wall_contact_history();
   const std::size_t k = std::size_t(all.slots);
   ASSERT_EQ(s.contacts.size(), s.size());
