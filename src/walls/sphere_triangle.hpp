@@ -265,9 +265,9 @@ GS_HD GS_INLINE bool keep_mesh_report(const MeshView& m, const std::int32_t* lis
 // with the triangles list[0..count), which must hold, ascending, every
 // triangle within `radius` of x (a cell's list from bin_triangles does).
 // Contacts come in ascending triangle order.
-// Triangles within reach kept apart by for_each_mesh_contact_in; with more,
-// it scans the whole cell list.
-constexpr int kMeshNearCap = 16;
+// How many triangles within reach for_each_mesh_contact_in lists apart; with
+// more in reach it scans the whole cell list.
+constexpr int kMeshInReachCap = 16;
 
 template <class Visitor>
 GS_HD void for_each_mesh_contact_in(const MeshView& m, const std::int32_t* list, std::int32_t count, const Vec3d& x,
@@ -278,16 +278,16 @@ GS_HD void for_each_mesh_contact_in(const MeshView& m, const std::int32_t* list,
   // holds a hundred triangles, of which a sphere touches a handful; scanning
   // the cell for each of its reports made such a sphere cost as much as a
   // warp of others (the mixer's particles wedged under the hub).
-  std::int32_t in_reach[kMeshNearCap];
-  std::int32_t n_near = 0;
-  for (std::int32_t k = 0; k < count && n_near <= kMeshNearCap; ++k) {
+  std::int32_t in_reach[kMeshInReachCap];
+  std::int32_t n_in_reach = 0;
+  for (std::int32_t k = 0; k < count && n_in_reach <= kMeshInReachCap; ++k) {
     if (!(triangle_closest_point(m, list[k], x).distance < radius)) continue;
-    if (n_near < kMeshNearCap) in_reach[n_near] = list[k];
-    ++n_near;
+    if (n_in_reach < kMeshInReachCap) in_reach[n_in_reach] = list[k];
+    ++n_in_reach;
   }
-  if (n_near <= kMeshNearCap) {
+  if (n_in_reach <= kMeshInReachCap) {
     list = in_reach;
-    count = n_near;
+    count = n_in_reach;
   }
   const double tol = mesh_coincidence_tolerance(x, radius);
   const double tol2 = tol * tol;

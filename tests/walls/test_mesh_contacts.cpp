@@ -113,7 +113,7 @@ TEST(MeshContacts, HighValenceFan) {
     b.triangle(centre, b.vertex(Vec3d(std::cos(p0), std::sin(p0), 0)), b.vertex(Vec3d(std::cos(p1), std::sin(p1), 0)));
   }
   const MeshSet set = test::single_mesh_set(b.take());
-  // Near the centre every triangle is within reach (more than kMeshNearCap:
+  // Near the centre every triangle is within reach (more than kMeshInReachCap:
   // the whole list is scanned); further out a few are (only they are).
   bool few = false, many = false;
   for (double r : {0.0, 1e-14, 1e-9, 1e-3, 0.05, 0.25, 0.3, 0.4, 0.7})
@@ -122,7 +122,7 @@ TEST(MeshContacts, HighValenceFan) {
       const Vec3d x(r * std::cos(phi), r * std::sin(phi), 0.2);
       int in_reach = 0;
       for (std::int32_t t = 0; t < n; ++t) in_reach += triangle_closest_point(set.view(), t, x).distance < kRadius;
-      (in_reach > kMeshNearCap ? many : few) = true;
+      (in_reach > kMeshInReachCap ? many : few) = true;
       const std::vector<MeshContact> c = all_contacts(set, x, kRadius);
       ASSERT_EQ(c.size(), 1u) << "r " << r << " phi " << phi;
       EXPECT_NEAR(c[0].overlap, 0.1, 1e-15);
