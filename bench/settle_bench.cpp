@@ -31,12 +31,11 @@ namespace {
 struct Options {
   long long n = 100000;
   long long steps = 200;
-  gs::Backend backend = gs::default_backend();
   gs::Precision precision = gs::Precision::fp32;
   unsigned effects = gs::kFriction;
   gs::ContactModel model = gs::ContactModel::linear;
   bool mesh = false;  // the seed's impeller turning at 30 rpm in the bed
-  gs::RunOptions run;
+  gs::RunOptions run{gs::default_backend()};  // backend and Verlet skin
 };
 
 gs::Precision parse_precision(const std::string& s) {
@@ -61,7 +60,7 @@ Options parse(int argc, char** argv) {
     const std::string v = argv[++k];
     if (a == "--n") o.n = std::stoll(v);
     else if (a == "--steps") o.steps = std::stoll(v);
-    else if (a == "--backend") o.backend = gs::parse_backend(v);
+    else if (a == "--backend") o.run.backend = gs::parse_backend(v);
     else if (a == "--precision") o.precision = parse_precision(v);
     else if (a == "--effects") o.effects = parse_effects(v);
     else if (a == "--model") o.model = v == "hertz" ? gs::ContactModel::hertz_mindlin : gs::ContactModel::linear;
@@ -143,16 +142,14 @@ int main(int argc, char** argv) {
   try {
     const Options o = parse(argc, argv);
     const gs::SceneSpec scene = bed_scene(o);
-    gs::RunOptions run = o.run;
-    run.backend = o.backend;
-    gs::Simulation sim(scene, run);
+    gs::Simulation sim(scene, o.run);
     sim.run(20);  // warm up: first sorts, history slots claimed
     const auto t0 = std::chrono::steady_clock::now();
     sim.run(o.steps);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double n = double(scene.particles.size());
     const double rate = double(o.steps) * n / wall;
-    const double bytes = double(gs::backend_peak_bytes(o.backend)) / n;
+    const double bytes = double(gs::backend_peak_bytes(o.run.backend)) / n;
     const gs::StepTimings t = sim.timings();
     // What the timed steps ended with: the bed loosens as it runs (see the top).
     double contacts = -1;
@@ -165,7 +162,7 @@ int main(int argc, char** argv) {
     std::printf("backend=%s n=%zu mesh=%s precision=%s effects=%u model=%s steps=%lld wall_s=%.3f "
                 "particle_steps_per_s=%.4g peak_bytes_per_particle=%.1f held_bytes_per_particle=%.1f "
                 "integrate_s=%.3f neighbours_s=%.3f forces_s=%.3f contacts_per_particle_at_end=%.2f\n",
-                gs::backend_name(o.backend), scene.particles.size(), o.mesh ? "impeller" : "none",
+                gs::backend_name(o.run.backend), scene.particles.size(), o.mesh ? "impeller" : "none",
                 gs::precision_name(o.precision), o.effects, o.model == gs::ContactModel::linear ? "linear" : "hertz",
                 o.steps, wall, rate, bytes, double(sim.device_bytes()) / n, t.integrate, t.neighbours, t.forces,
                 contacts);

@@ -63,6 +63,10 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
 
 void Simulation::set_up(const SceneSpec& scene) {
   if (const std::string problem = fp32_state_problem(scene); !problem.empty()) throw std::invalid_argument(problem);
+  // A negative skin would make cells narrower than a contact's reach.
+  if (!(options_.verlet_skin >= 0) || !std::isfinite(options_.verlet_skin))
+    throw std::invalid_argument("Verlet skin must be a finite number >= 0 (in largest diameters), got " +
+                                std::to_string(options_.verlet_skin));
   const Backend b = options_.backend;
   store_.backend = b;
   for (auto* a : {&store_.radius, &store_.mass, &store_.inertia}) *a = DeviceArray<float>(b);

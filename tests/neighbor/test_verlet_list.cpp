@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
+#include <string>
 
 #include "backend/cpu/cpu_exec.hpp"
 #include "support/support.hpp"
@@ -151,6 +153,20 @@ TEST(VerletList, ForcesMatchBruteForceAfterManyRebuilds) {
   }
   EXPECT_EQ(bad, 0);
   EXPECT_GT(touching, 5);
+}
+
+TEST(VerletList, NegativeOrNonFiniteSkinIsRefused) {
+  const SceneSpec scene = gas_scene(0.0132, 8);
+  for (double skin : {-0.01, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    RunOptions options{Backend::cpu};
+    options.verlet_skin = skin;
+    try {
+      Simulation sim(scene, options);
+      ADD_FAILURE() << "skin " << skin << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("Verlet skin"), std::string::npos) << e.what();
+    }
+  }
 }
 
 // Each particle's contacts are summed in ascending partner id, whatever the
