@@ -13,16 +13,6 @@
 namespace gs {
 namespace {
 
-class Stopwatch {
- public:
-  explicit Stopwatch(double& total) : total_(total) {}
-  ~Stopwatch() { total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
-
- private:
-  double& total_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
-
 // The header of a message from rank `from`, checked before anything is
 // sized from it.
 MessageHeader read_header(const Bytes& b, int from) {
@@ -67,6 +57,14 @@ std::vector<int> DomainExchange::all_other_ranks() const {
   return r;
 }
 
+void DomainExchange::lap(StepKernels& k, double ExchangeSplit::*phase) {
+  if (!timed_) return;
+  k.synchronize();
+  const auto now = std::chrono::steady_clock::now();
+  split_.*phase += std::chrono::duration<double>(now - last_lap_).count();
+  last_lap_ = now;
+}
+
 ParticleRouter& DomainExchange::router(const ParticleStore& s, const std::vector<int>& peers) {
   if (!router_ || router_backend_ != s.position.backend()) {
     router_ = make_particle_router(s.position.backend());
@@ -98,12 +96,14 @@ std::vector<MessageHeader> DomainExchange::trade(StepKernels& k, const ParticleS
   for (std::size_t p = 0; p < n; ++p) {
     router_->select(int(p), list_);
     sent_ += list_.size();
+    lap(k, &ExchangeSplit::route);
     if (list_.size() == 0) continue;
     const MessageHeader h = k.pack(s, list_, with_history, outbox_[p]);
     const std::size_t payload = link_ ? 0 : outbox_[p].size();
     send[p].resize(sizeof(h) + payload);
     std::memcpy(send[p].data(), &h, sizeof(h));
     if (payload > 0) backend_copy_to_host(router_backend_, send[p].data() + sizeof(h), outbox_[p].data(), payload);
+    lap(k, &ExchangeSplit::pack);
   }
   transport_.exchange(peers, send, recv);
 
@@ -129,6 +129,7 @@ std::vector<MessageHeader> DomainExchange::trade(StepKernels& k, const ParticleS
     }
     link_->exchange(peers, from, send_bytes, to, recv_bytes);
   }
+  lap(k, &ExchangeSplit::transfer);
   return headers;
 }
 
@@ -137,14 +138,17 @@ void DomainExchange::unpack(StepKernels& k, ParticleStore& s, const std::vector<
                             bool as_ghosts) {
   for (std::size_t p = 0; p < headers.size(); ++p)
     if (headers[p].count > 0) k.unpack(s, headers[p], inbox_[p].data(), as_ghosts);
+  lap(k, &ExchangeSplit::unpack);
 }
 
 void DomainExchange::send_to_owners(ParticleStore& s, StepKernels& k, const std::vector<int>& peers) {
   s.drop_ghosts();
+  last_lap_ = std::chrono::steady_clock::now();
   router(s, peers).tag_owners(s);
   sent_ = 0;
   const std::vector<MessageHeader> arrived = trade(k, s, peers, true);
   router_->select(ParticleRouter::kStay, list_);
+  lap(k, &ExchangeSplit::route);
   if (sent_ + list_.size() != std::size_t(s.n_owned))
     throw std::runtime_error(std::to_string(std::size_t(s.n_owned) - sent_ - list_.size()) +
                              " particle(s) moved from rank " + std::to_string(rank()) +
@@ -154,22 +158,21 @@ void DomainExchange::send_to_owners(ParticleStore& s, StepKernels& k, const std:
 }
 
 void DomainExchange::migrate(ParticleStore& s, StepKernels& k) {
-  Stopwatch watch(seconds_);
   send_to_owners(s, k, peers_);
 }
 
 void DomainExchange::refresh_ghosts(ParticleStore& s, StepKernels& k) {
-  Stopwatch watch(seconds_);
   s.drop_ghosts();
+  last_lap_ = std::chrono::steady_clock::now();
   // Decomposition::neighbours() holds every rank within the halo of an owned
   // particle, so no ghost is tagged for a rank that is not a peer.
   router(s, peers_).tag_ghosts(s, halo_);
+  lap(k, &ExchangeSplit::route);
   unpack(k, s, trade(k, s, peers_, false), true);
 }
 
 bool DomainExchange::rebalance(ParticleStore& s, StepKernels& k) {
   if (ranks() == 1) return false;
-  Stopwatch watch(seconds_);
   std::vector<std::int64_t> loads(std::size_t(ranks()), 0);
   loads[std::size_t(rank())] = s.n_owned;
   transport_.sum(loads);

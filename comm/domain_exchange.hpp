@@ -4,6 +4,7 @@
 // re-balancing, and agreement on faults. Particles are packed and unpacked by
 // the backend's kernels (StepKernels::pack / unpack), and who goes where is
 // decided by the backend's ParticleRouter; the host only moves the messages.
+#include <chrono>
 #include <memory>
 
 #include "comm/device_link.hpp"
@@ -33,7 +34,8 @@ class DomainExchange final : public RankExchange {
   std::string describe() const override {
     return decomposition_->describe() + (link_ ? "; particles move over NCCL" : "; particles move through host buffers");
   }
-  double seconds() const override { return seconds_; }
+  void time_phases(bool on) override { timed_ = on; }
+  ExchangeSplit split() const override { return split_; }
 
   const Decomposition& decomposition() const { return *decomposition_; }
   // Moves message payloads over `link` (GPU ranks) instead of through the host.
@@ -47,6 +49,9 @@ class DomainExchange final : public RankExchange {
   std::vector<MessageHeader> trade(StepKernels& k, const ParticleStore& s, const std::vector<int>& peers,
                                    bool with_history);
   void unpack(StepKernels& k, ParticleStore& s, const std::vector<MessageHeader>& headers, bool as_ghosts);
+  // On timed calls: waits for the device and charges the time since the
+  // previous lap to `phase`.
+  void lap(StepKernels& k, double ExchangeSplit::*phase);
   std::vector<int> all_other_ranks() const;
 
   Transport& transport_;
@@ -54,7 +59,9 @@ class DomainExchange final : public RankExchange {
   double halo_;
   DecompositionSpec spec_;
   std::vector<int> peers_;  // neighbours of this rank, ascending
-  double seconds_ = 0;
+  bool timed_ = false;
+  ExchangeSplit split_;
+  std::chrono::steady_clock::time_point last_lap_;
   std::unique_ptr<ParticleRouter> router_;
   Backend router_backend_ = Backend::cpu;
   bool map_current_ = false;     // the router holds decomposition_'s current map

@@ -94,10 +94,11 @@ class MpiTransport final : public Transport {
     return value;
   }
 
-  std::vector<Bytes> gather(const Bytes& local) override {
+  std::vector<Bytes> gather(Bytes local) override {
     std::vector<Bytes> all;
     if (rank_ != 0) {
-      const std::vector<Bytes> one{local};
+      std::vector<Bytes> one;
+      one.push_back(std::move(local));
       std::vector<Bytes> none;
       exchange({0}, one, none);
       return all;
@@ -106,7 +107,7 @@ class MpiTransport final : public Transport {
     for (int r = 1; r < size_; ++r) others.push_back(r);
     std::vector<Bytes> from_others;
     exchange(others, std::vector<Bytes>(others.size()), from_others);
-    all.push_back(local);
+    all.push_back(std::move(local));
     for (Bytes& b : from_others) all.push_back(std::move(b));
     return all;
   }

@@ -1,5 +1,6 @@
 #include <cstdlib>
 #include <stdexcept>
+#include <utility>
 
 #include "comm/transport.hpp"
 
@@ -18,7 +19,11 @@ class SingleTransport final : public Transport {
   void sum(std::vector<std::int64_t>&) override {}
   void sum(std::vector<double>&) override {}
   int min(int value) override { return value; }
-  std::vector<Bytes> gather(const Bytes& local) override { return {local}; }
+  std::vector<Bytes> gather(Bytes local) override {
+    std::vector<Bytes> all;
+    all.push_back(std::move(local));
+    return all;
+  }
   Bytes broadcast(const Bytes& data, int) override { return data; }
   [[noreturn]] void abort(int code) override { std::exit(code); }
 };

@@ -11,8 +11,8 @@ namespace gs {
 namespace {
 
 // Each field of a snapshot, visited in one fixed order for packing and unpacking.
-template <class F>
-void for_each_field(ParticleSnapshot& s, F&& f) {
+template <class Snapshot, class F>
+void for_each_field(Snapshot& s, F&& f) {
   f(s.id);
   f(s.material);
   f(s.marker);
@@ -28,7 +28,7 @@ void for_each_field(ParticleSnapshot& s, F&& f) {
   f(s.contacts);
 }
 
-Bytes pack(ParticleSnapshot s) {
+Bytes pack(const ParticleSnapshot& s) {
   Bytes out;
   for_each_field(s, [&](auto& v) {
     const std::uint64_t n = v.size();
@@ -63,19 +63,43 @@ void permute(std::vector<T>& v, const std::vector<std::size_t>& order) {
   v.swap(out);
 }
 
+// Indices of `id` in ascending id order, given that id[runs[k]..runs[k+1])
+// is ascending for each k (each rank's part): merged run by run, or sorted
+// whole if a run is not in order.
+std::vector<std::size_t> id_order(const std::vector<ParticleId>& id, const std::vector<std::size_t>& runs) {
+  std::vector<std::size_t> order(id.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  const auto by_id = [&](std::size_t a, std::size_t b) { return id[a] < id[b]; };
+  bool runs_sorted = true;
+  for (std::size_t k = 0; k + 1 < runs.size() && runs_sorted; ++k)
+    runs_sorted = std::is_sorted(id.begin() + std::ptrdiff_t(runs[k]), id.begin() + std::ptrdiff_t(runs[k + 1]));
+  if (!runs_sorted) {
+    std::sort(order.begin(), order.end(), by_id);
+    return order;
+  }
+  for (std::size_t k = 1; k + 1 < runs.size(); ++k)
+    std::inplace_merge(order.begin(), order.begin() + std::ptrdiff_t(runs[k]),
+                       order.begin() + std::ptrdiff_t(runs[k + 1]), by_id);
+  return order;
+}
+
 }  // namespace
 
-ParticleSnapshot gather_snapshot(Transport& transport, const ParticleSnapshot& local) {
+ParticleSnapshot gather_snapshot(Transport& transport, ParticleSnapshot local) {
   if (transport.size() == 1) return local;
-  const std::vector<Bytes> parts = transport.gather(pack(local));
+  std::vector<Bytes> parts = transport.gather(pack(local));
   ParticleSnapshot all;
   all.time = local.time;
   all.step = local.step;
+  local = ParticleSnapshot();  // rank 0 needs the room for the whole
   if (transport.rank() != 0) return all;
-  for (const Bytes& b : parts) unpack_append(b, all);
-  std::vector<std::size_t> order(all.size());
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all.id[a] < all.id[b]; });
+  std::vector<std::size_t> runs{0};
+  for (Bytes& b : parts) {
+    unpack_append(b, all);
+    Bytes().swap(b);
+    runs.push_back(all.size());
+  }
+  const std::vector<std::size_t> order = id_order(all.id, runs);
   for_each_field(all, [&](auto& v) { permute(v, order); });
   return all;
 }

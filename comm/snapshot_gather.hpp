@@ -7,7 +7,9 @@
 namespace gs {
 
 // Collective. Rank 0 gets the whole snapshot; other ranks an empty one.
-ParticleSnapshot gather_snapshot(Transport& transport, const ParticleSnapshot& local);
+// `local` is in ascending id order, as Simulation::snapshot() gives it (the
+// parts are then merged, not sorted again).
+ParticleSnapshot gather_snapshot(Transport& transport, ParticleSnapshot local);
 // Collective. The contact history of every particle on rank 0, in id order;
 // `local` is in the order of `local_ids`.
 HostHistory gather_history(Transport& transport, const std::vector<ParticleId>& local_ids, const HostHistory& local);

@@ -28,7 +28,7 @@ class Transport {
   virtual void sum(std::vector<double>& values) = 0;
   virtual int min(int value) = 0;                           // all-reduce
   // Every rank's bytes in rank order on rank 0; empty elsewhere.
-  virtual std::vector<Bytes> gather(const Bytes& local) = 0;
+  virtual std::vector<Bytes> gather(Bytes local) = 0;
   virtual Bytes broadcast(const Bytes& data, int root) = 0;
   // Ends every rank at once (a failure no collective can report).
   [[noreturn]] virtual void abort(int code) = 0;

@@ -207,6 +207,12 @@ int command_run(const std::vector<std::string>& args, Transport& transport) {
           "output %.3f, total wall %.3f\n",
           t.integrate, t.neighbours, t.forces, t.exchange, wall - (t.integrate + t.neighbours + t.forces + t.exchange),
           wall);
+  if (exchange) {
+    const ExchangeSplit x = exchange->split();
+    const double sum = x.total() > 0 ? x.total() : 1;
+    out.log("exchange split (rank 0, timed steps): route %.0f%%, pack %.0f%%, transfer and waiting %.0f%%, "
+            "unpack %.0f%%\n", 100 * x.route / sum, 100 * x.pack / sum, 100 * x.transfer / sum, 100 * x.unpack / sum);
+  }
   out.log("peak %s memory (rank 0): %s\n", backend_name(sim->backend()),
           human_bytes(double(backend_peak_bytes(sim->backend()))).c_str());
   return 0;

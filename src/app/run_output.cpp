@@ -75,8 +75,7 @@ void RunOutput::snapshot(const Simulation& sim) {
   for (const MeshLoad& l : sim.mesh_loads())
     mesh_load.insert(mesh_load.end(), {l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y, l.torque.z});
   if (!mesh_load.empty()) transport_.sum(mesh_load);  // every rank has the same meshes
-  const ParticleSnapshot local = sim.snapshot();
-  const ParticleSnapshot s = gather_snapshot(transport_, local);
+  const ParticleSnapshot s = gather_snapshot(transport_, sim.snapshot());
   const bool need_history = uses_history(scene_.effects);
   const ParticleRecords on_walls =
       need_history ? gather_history_records(transport_, sim.wall_contact_history()) : ParticleRecords();

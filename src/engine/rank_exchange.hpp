@@ -9,6 +9,15 @@
 
 namespace gs {
 
+// Where the exchange's time goes, summed over the timed steps only (see
+// Simulation::phase_seconds): deciding who goes where, packing messages,
+// moving them (which includes waiting for slower peers), and unpacking
+// arrivals and compacting the owned particles.
+struct ExchangeSplit {
+  double route = 0, pack = 0, transfer = 0, unpack = 0;
+  double total() const { return route + pack + transfer + unpack; }
+};
+
 class RankExchange {
  public:
   virtual ~RankExchange() = default;
@@ -36,7 +45,10 @@ class RankExchange {
   virtual void sum(std::vector<double>& values) = 0;
 
   virtual std::string describe() const = 0;  // partition and imbalance, for the log
-  virtual double seconds() const = 0;        // wall time spent exchanging so far
+  // Times the following migrate / refresh_ghosts calls phase by phase, waiting
+  // for the device between phases, or stops doing so.
+  virtual void time_phases(bool on) = 0;
+  virtual ExchangeSplit split() const = 0;
 };
 
 }  // namespace gs

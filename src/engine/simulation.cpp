@@ -226,6 +226,7 @@ void Simulation::run(long long steps) {
   for (long long s = 0; s < steps; ++s) {
     // A timed step starts with an idle device, so it is charged only its own work.
     if (step_ % kTimedEvery == 0) kernels_->synchronize();
+    if (exchange_) exchange_->time_phases(step_ % kTimedEvery == 0);
     auto t0 = Clock::now();
     p.step = step_ + 1;
     kernels_->kick_drift(store_, p);

@@ -4,10 +4,12 @@
 // contact history.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <map>
 
+#include "comm/device_link.hpp"
 #include "comm/domain_exchange.hpp"
 #include "comm/records_codec.hpp"
 #include "comm/snapshot_gather.hpp"
@@ -63,12 +65,23 @@ ContactMap gathered_contacts(const Simulation& sim) {
   return contacts_of(ids, all);
 }
 
+// GPU ranks, each on a GPU of its own, exchanging over NCCL: on the device
+// machine's multi-GPU kinds, with GS_TEST_BACKENDS naming cuda. Collective.
+bool gpu_ranks_ready() {
+  const std::vector<Backend> b = test_backends();
+  if (std::find(b.begin(), b.end(), Backend::cuda) == b.end() || !nccl_available()) return false;
+  const bool own_gpu = cuda_device_available() && select_cuda_device(world().local_rank());
+  return world().min(own_gpu ? 1 : 0) == 1;
+}
+
 // Runs `scene` for `steps` on one rank and on every rank of the world, and
-// compares on rank 0.
+// compares on rank 0. On the CUDA backend the one-rank run is on each rank's
+// own GPU, and the ranks move particles over NCCL.
 void expect_rank_independent(const SceneSpec& scene, long long steps, RunOptions options = {}) {
   Simulation one(scene, options);
   one.run(steps);
   auto exchange = make_domain_exchange(scene, world());
+  if (options.backend == Backend::cuda) exchange->use_device_link(make_nccl_link(world()));
   Simulation many(scene, options, exchange);
   many.run(steps);
   const ParticleSnapshot all = gather_snapshot(world(), many.snapshot());
@@ -126,7 +139,7 @@ TEST(RankIndependence, PolydisperseFrictionalSettlingWithMetis) {
 // Two lattices flying into each other across the slab boundary (no gravity,
 // no walls): particles stream through the boundary in both directions,
 // collide on both sides of it, and keep their friction history as they cross.
-TEST(RankIndependence, StreamsThroughSlabBoundaryBothWays) {
+SceneSpec streaming_scene() {
   SceneSpec s = base_scene(2500, 2000, 0.8, 0.4);
   s.effects = kFriction;
   s.precision = Precision::fp64;
@@ -147,7 +160,36 @@ TEST(RankIndependence, StreamsThroughSlabBoundaryBothWays) {
   for (std::size_t i = 0; i < s.particles.size(); ++i) s.particles[i].id = ParticleId(i);
   s.decomposition.axis = 0;
   s.time_step = 5e-6;
-  expect_rank_independent(s, 380);  // 1.9 ms: the second rows of each side meet
+  return s;
+}
+constexpr long long kStreamingSteps = 380;  // 1.9 ms: the second rows of each side meet
+
+TEST(RankIndependence, StreamsThroughSlabBoundaryBothWays) {
+  expect_rank_independent(streaming_scene(), kStreamingSteps);
+}
+
+// The same scenes on GPU ranks over NCCL against one GPU: bitwise too, since
+// each particle's sum runs in partner-id order on either backend.
+class RankIndependenceOnGpus : public testing::Test {
+ protected:
+  void SetUp() override {
+    if (!gpu_ranks_ready()) GTEST_SKIP() << "needs GS_TEST_BACKENDS with cuda, NCCL, and a GPU per rank";
+    options.backend = Backend::cuda;
+  }
+  RunOptions options;
+};
+
+TEST_F(RankIndependenceOnGpus, PolydisperseFrictionalSettlingWithSlabs) {
+  options.rebalance_interval = 200;
+  expect_rank_independent(settling_scene(DecompositionMethod::slabs), 1500, options);
+}
+
+TEST_F(RankIndependenceOnGpus, PolydisperseFrictionalSettlingWithMetis) {
+  expect_rank_independent(settling_scene(DecompositionMethod::metis), 1500, options);
+}
+
+TEST_F(RankIndependenceOnGpus, StreamsThroughSlabBoundaryBothWays) {
+  expect_rank_independent(streaming_scene(), kStreamingSteps, options);
 }
 
 }  // namespace
