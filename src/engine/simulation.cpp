@@ -253,7 +253,8 @@ void Simulation::run(long long steps) {
       timings_.exchange += phase_seconds(t0);
     }
     t0 = Clock::now();
-    if (stale) rebuild_neighbours();
+    if (stale && exchange_) kernels_->build_neighbours_for_one_step(store_, grid_);
+    else if (stale) rebuild_neighbours();
     timings_.neighbours += phase_seconds(t0);
 
     t0 = Clock::now();

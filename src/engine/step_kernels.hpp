@@ -43,6 +43,11 @@ class StepKernels {
   // What the force computation needs to find contacts: the cell list, and
   // with a Verlet list the list too, of particles within r_i + r_j + skin.
   virtual void build_neighbours(ParticleStore& s, const CellGrid& grid, double skin) = 0;
+  // The same for one force computation only (ranks, whose ghosts change every
+  // step): the cell list alone; with a Verlet list the force kernel then finds
+  // each particle's touching partners in the cells and sums them in ascending
+  // id, which is the list's order, without writing a list used once.
+  virtual void build_neighbours_for_one_step(ParticleStore& s, const CellGrid& grid) = 0;
   // Whether build_neighbours must run before the next force computation:
   // always without a Verlet list; with one, when the store has changed since
   // the build or a particle has moved more than half the skin.

@@ -130,6 +130,7 @@ class StepKernelsImpl final : public StepKernels {
       build_verlet_list<Exec>(verlet_, cells_, s.position.data(), s.radius.data(), s.id.data(), s.n_owned, s.size(),
                               skin);
   }
+  void build_neighbours_for_one_step(ParticleStore& s, const CellGrid& grid) override { build_cell_list(s, grid); }
   bool neighbours_stale(const ParticleStore& s) const override {
     if constexpr (Exec::verlet_list) return verlet_list_stale<Exec>(verlet_, s.position.data(), s.n_owned, s.size());
     return true;
@@ -137,10 +138,15 @@ class StepKernelsImpl final : public StepKernels {
 
   void compute_forces(ParticleStore& s, double dt, long long step) override {
     if constexpr (Exec::verlet_list) {
-      if (!verlet_.valid) throw std::logic_error("compute_forces before build_neighbours");
-      launch_forces(s, verlet_.candidates(), dt, step);
+      if (verlet_.valid) {
+        launch_forces(s, verlet_.candidates(), dt, step);
+      } else {
+        launch_forces(s, TouchingInIdOrder{cell_candidates(), s.position.data(), s.radius.data(), s.id.data(),
+                                           fault_.data(), step},
+                      dt, step);
+      }
     } else {
-      launch_forces(s, CellCandidates{cells_.grid, cells_.sorted.data(), cells_.cell_begin.data()}, dt, step);
+      launch_forces(s, cell_candidates(), dt, step);
     }
   }
 
@@ -191,6 +197,7 @@ class StepKernelsImpl final : public StepKernels {
   }
 
  private:
+  CellCandidates cell_candidates() const { return {cells_.grid, cells_.sorted.data(), cells_.cell_begin.data()}; }
   template <class Candidates>
   void launch_forces(ParticleStore& s, const Candidates& candidates, double dt, long long step) {
     ForceKernel<Real, Model, Effects, Candidates> k{s.id.data(), s.material.data(), s.radius.data(), s.mass.data(),
