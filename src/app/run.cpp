@@ -72,12 +72,14 @@ long long steps_per(double interval, double dt) {
 }
 
 
-// Progress to stderr at most every two seconds: step, time, rate, ETA.
+// Progress to stderr at most every two seconds: step, time, rate, ETA. Only
+// rank 0 prints it (every rank would repeat the same line).
 class Progress {
  public:
-  Progress(long long first, long long total, long long particles)
-      : first_(first), total_(total), particles_(particles) {}
+  Progress(long long first, long long total, long long particles, bool prints)
+      : first_(first), total_(total), particles_(particles), prints_(prints) {}
   void update(const Simulation& sim) {
+    if (!prints_) return;
     const auto now = Clock::now();
     if (std::chrono::duration<double>(now - last_).count() < 2.0 && sim.step_count() < total_) return;
     last_ = now;
@@ -91,6 +93,7 @@ class Progress {
 
  private:
   long long first_, total_, particles_;
+  bool prints_;
   Clock::time_point start_ = Clock::now(), last_ = start_;
 };
 
@@ -166,7 +169,7 @@ int command_run(const std::vector<std::string>& args, Transport& transport) {
   const auto t0 = Clock::now();
   auto last_checkpoint = t0;
   const long long first_step = sim->step_count();  // after a restart, the rate counts this run's steps only
-  Progress progress(first_step, total, particles);
+  Progress progress(first_step, total, particles, transport.rank() == 0);
   if (a.restart.empty()) mark_if_due(0);
   if (a.restart.empty()) out.snapshot(*sim);
   if (a.restart.empty() && mixing.due(0)) out.mixing(*sim);

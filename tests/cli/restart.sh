@@ -25,8 +25,10 @@ mpi 2 run "$scene" --backend cpu --steps "$half" --out first > first.log
 checkpoint=$(ls first/checkpoint_*.h5 | sort | tail -1)
 [[ -f $checkpoint ]] || fail "no checkpoint written"
 for np in 1 3; do
-  mpi $np run "$scene" --backend cpu --restart "$checkpoint" --out "again$np" > "again$np.log"
+  mpi $np run "$scene" --backend cpu --restart "$checkpoint" --out "again$np" > "again$np.log" 2> "again$np.err"
   cmp "$reference" "$(last_csv again$np)" || fail "restart on $np ranks differs from the uninterrupted run"
+  # One progress line for the last step, from rank 0 only.
+  [[ $(grep -c "^step $steps/$steps " "again$np.err") == 1 ]] || fail "progress on $np ranks: $(cat again$np.err)"
 done
 "$gs" run "$scene" --backend cpu --restart "$checkpoint" --out again1b > /dev/null
 echo "restart across rank counts: bitwise equal"
