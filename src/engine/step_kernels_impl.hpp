@@ -141,6 +141,9 @@ class StepKernelsImpl final : public StepKernels {
       if (verlet_.valid) {
         launch_forces(s, verlet_.candidates(), dt, step);
       } else {
+        // build_neighbours_for_one_step: the cells of the whole store.
+        if (cells_.sorted.size() != std::size_t(s.size()))
+          throw std::logic_error("compute_forces before build_neighbours");
         launch_forces(s, TouchingInIdOrder{cell_candidates(), s.position.data(), s.radius.data(), s.id.data(),
                                            fault_.data(), step},
                       dt, step);
