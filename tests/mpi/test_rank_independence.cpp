@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <map>
 
@@ -99,18 +100,26 @@ void expect_rank_independent(const SceneSpec& scene, long long steps, RunOptions
   EXPECT_TRUE(ref_contacts == many_contacts) << "contact histories differ";
 }
 
-// Polydisperse (1:3) frictional spheres with rolling resistance settling in a
-// box: the slabs cut the falling column, so particles cross boundaries.
-SceneSpec settling_scene(DecompositionMethod method) {
+// Frictional glass with rolling resistance under gravity in a box [0, side]^2
+// x [0, height] (open at the top), fp32, slabs along z; no particles yet.
+SceneSpec frictional_box(double side, double height) {
   SceneSpec s = base_scene(2500, 2000, 0.5, 0.5);
   s.precision = Precision::fp32;
   s.effects = kFriction | kRollingResistance;
   s.pairs[0].rolling_friction = 0.1;
   s.gravity = {0, 0, -9.81};
   s.domain_min = {-0.001, -0.001, -0.001};
-  s.domain_max = {0.021, 0.021, 0.041};
-  s.walls = {plane_wall({0, 0, 0}, {1, 0, 0}), plane_wall({0.02, 0, 0}, {-1, 0, 0}),
-             plane_wall({0, 0, 0}, {0, 1, 0}), plane_wall({0, 0.02, 0}, {0, -1, 0}), plane_wall({0, 0, 0}, {0, 0, 1})};
+  s.domain_max = {side + 0.001, side + 0.001, height + 0.001};
+  s.walls = {plane_wall({0, 0, 0}, {1, 0, 0}), plane_wall({side, 0, 0}, {-1, 0, 0}),
+             plane_wall({0, 0, 0}, {0, 1, 0}), plane_wall({0, side, 0}, {0, -1, 0}), plane_wall({0, 0, 0}, {0, 0, 1})};
+  s.decomposition.axis = 2;
+  return s;
+}
+
+// Polydisperse (1:3) frictional spheres with rolling resistance settling in a
+// box: the slabs cut the falling column, so particles cross boundaries.
+SceneSpec settling_scene(DecompositionMethod method) {
+  SceneSpec s = frictional_box(0.02, 0.04);
   RandomFillSpec fill;
   fill.region.min = {0.0015, 0.0015, 0.0015};
   fill.region.max = {0.0185, 0.0185, 0.0385};
@@ -121,7 +130,6 @@ SceneSpec settling_scene(DecompositionMethod method) {
   fill.seed = 7;
   generate_random_fill(fill, s.particles);
   s.decomposition.method = method;
-  s.decomposition.axis = 2;
   s.time_step = 2e-5;
   return s;
 }
@@ -173,16 +181,8 @@ TEST(RankIndependence, StreamsThroughSlabBoundaryBothWays) {
 // resistance: every sphere starts with up to six contacts, so the order of
 // each sum matters (two terms would add the same either way).
 SceneSpec compressed_lattice_scene() {
-  SceneSpec s = base_scene(2500, 2000, 0.5, 0.5);
-  s.precision = Precision::fp32;
-  s.effects = kFriction | kRollingResistance;
-  s.pairs[0].rolling_friction = 0.1;
-  s.gravity = {0, 0, -9.81};
-  s.domain_min = {-0.001, -0.001, -0.001};
-  s.domain_max = {0.013, 0.013, 0.013};
-  s.walls = {plane_wall({0, 0, 0}, {1, 0, 0}), plane_wall({0.012, 0, 0}, {-1, 0, 0}),
-             plane_wall({0, 0, 0}, {0, 1, 0}), plane_wall({0, 0.012, 0}, {0, -1, 0}), plane_wall({0, 0, 0}, {0, 0, 1}),
-             plane_wall({0, 0, 0.012}, {0, 0, -1})};
+  SceneSpec s = frictional_box(0.012, 0.012);
+  s.walls.push_back(plane_wall({0, 0, 0.012}, {0, 0, -1}));  // a lid: the lattice springs upwards too
   LatticeSpec l;
   l.radius = 0.0005;
   l.spacing = 0.00098;
@@ -190,7 +190,6 @@ SceneSpec compressed_lattice_scene() {
   l.max = {0.0114, 0.0114, 0.0114};
   generate_lattice(l, s.particles);
   for (std::size_t i = 0; i < s.particles.size(); i += 2) s.particles[i].radius = 0.000495;
-  s.decomposition.axis = 2;
   s.time_step = 1e-5;
   return s;
 }
@@ -198,6 +197,38 @@ constexpr long long kCompressedSteps = 400;
 
 TEST(RankIndependence, CompressedLatticeWithManyContacts) {
   expect_rank_independent(compressed_lattice_scene(), kCompressedSteps);
+}
+
+// A CPU rank searches each particle's touching partners in a buffer of 128
+// (TouchingInIdOrder): a sphere touched by 135 small ones stops the run on
+// every rank with a fault that says so, instead of losing contacts.
+TEST(RankIndependence, SphereTouchedByMoreThan128IsAFaultOnCpuRanks) {
+  SceneSpec s = base_scene(2500, 2000, 0.5);
+  s.domain_min = {0, 0, 0};
+  s.domain_max = {0.02, 0.02, 0.04};  // tall enough for 4 slabs of one interaction range
+  const Vec3d centre{0.01, 0.01, 0.01};
+  const double big = 0.003, small = 0.00045, shell = big + small - 1e-5;
+  ParticleInit p;
+  p.radius = big;
+  p.position = centre;
+  s.particles.push_back(p);
+  const int n = 135;  // on a Fibonacci sphere: neighbours 1.1 mm apart, more than a small diameter
+  for (int k = 0; k < n; ++k) {
+    const double z = 1 - (2 * k + 1.0) / n, r = std::sqrt(1 - z * z), phi = 2.399963229728653 * k;
+    p.radius = small;
+    p.position = centre + Vec3d{r * std::cos(phi), r * std::sin(phi), z} * shell;
+    s.particles.push_back(p);
+  }
+  for (std::size_t i = 0; i < s.particles.size(); ++i) s.particles[i].id = ParticleId(i);
+  s.decomposition.axis = 2;
+  s.time_step = 1e-6;
+  Simulation many(s, RunOptions{}, make_domain_exchange(s, world()));
+  try {
+    many.run(5);
+    ADD_FAILURE() << "135 touching spheres were accepted";
+  } catch (const SimulationFault& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 128 particles touch"), std::string::npos) << e.what();
+  }
 }
 
 // The same scenes on GPU ranks over NCCL against one GPU: bitwise too, since
