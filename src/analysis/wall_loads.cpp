@@ -9,13 +9,6 @@
 namespace gs {
 namespace {
 
-PairParams<double> pair_params(const PairTableHost& t, int a, int b) {
-  const std::size_t k = std::size_t(a) * std::size_t(t.n_materials) + std::size_t(b);
-  return {t.stiffness_normal[k], t.stiffness_tangential[k], t.stiffness_rolling[k], t.damping_ratio[k],
-          t.friction[k],         t.rolling_friction[k],     t.cohesion[k],          t.youngs_modulus_eff[k],
-          t.shear_modulus_eff[k]};
-}
-
 // The stored springs of particle `id`'s contact with wall w (zero when none).
 ContactSprings<double> stored_springs(const ParticleRecords& on_walls, ParticleId id, int w) {
   ContactSprings<double> springs;
@@ -50,7 +43,7 @@ std::vector<MeshLoad> loads(const SceneSpec& scene, const std::vector<Wall>& wal
       k.effective_radius = s.radius[i];
       ContactSprings<double> springs = stored_springs(on_walls, s.id[i], int(w));
       const ContactLoad<double> load = contact_load<double, Model, Effects>(
-          pair_params(table, s.material[i], walls[w].material), k, springs, 0.0);
+          pair_params<double>(table, std::size_t(s.material[i]) * std::size_t(table.n_materials) + walls[w].material), k, springs, 0.0);
       // The wall feels the opposite of what the particle feels.
       const Vec3d centre = walls[w].axis_point + walls[w].shift;
       out[w].force -= load.force;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "backend/cpu/cpu_arch.hpp"
 #include "comm/transport.hpp"
 #include "engine/simulation.hpp"
 #include "io/checkpoint.hpp"
@@ -70,7 +71,7 @@ int main(int argc, char** argv) {
     return args.empty() ? 2 : 0;
   }
   if (args[0] == "--version") {
-    std::printf("grainstorm %s\n", GS_VERSION);
+    std::printf("grainstorm %s (host code for %s)\n", GS_VERSION, gs::host_code_arch());
     return 0;
   }
   if (args[0] == "run") return run_on_every_rank(args);

@@ -39,10 +39,14 @@ GS_HD GS_INLINE ContactLoad<Real> contact_load(const PairParams<Real>& p, const 
   const Real normal_speed = dot(c.velocity, c.normal);
   const Real overlap_rate = -normal_speed;
   Real normal_force;
+  [[maybe_unused]] Real root_mass = 0;           // linear
+  [[maybe_unused]] HertzContact<Real> hertz{};  // Hertz-Mindlin
   if constexpr (Model == ContactModel::linear) {
-    normal_force = linear_normal_force(p, c.overlap, overlap_rate, c.effective_mass);
+    root_mass = std::sqrt(c.effective_mass);
+    normal_force = linear_normal_force(p, c.overlap, overlap_rate, root_mass);
   } else {
-    normal_force = hertz_normal_force(p, c.overlap, overlap_rate, c.effective_mass, c.effective_radius);
+    hertz = hertz_contact(c.overlap, c.effective_mass, c.effective_radius);
+    normal_force = hertz_normal_force(p, c.overlap, overlap_rate, hertz);
   }
   ContactLoad<Real> load;
   Real total_normal = normal_force;
@@ -50,12 +54,12 @@ GS_HD GS_INLINE ContactLoad<Real> contact_load(const PairParams<Real>& p, const 
   load.force = c.normal * total_normal;
 
   if constexpr ((Effects & kFriction) != 0) {
-    const Vec3<Real> tangential_velocity = c.velocity - c.normal * normal_speed;
+    const Vec3<Real> tangential_velocity = mul_add(c.normal, -normal_speed, c.velocity);
     TangentialCoefficients<Real> t;
     if constexpr (Model == ContactModel::linear) {
-      t = linear_tangential_coefficients(p, c.effective_mass);
+      t = linear_tangential_coefficients(p, root_mass);
     } else {
-      t = mindlin_tangential_coefficients(p, c.overlap, c.effective_mass, c.effective_radius);
+      t = mindlin_tangential_coefficients(p, hertz);
     }
     const Vec3<Real> f_t = tangential_force(springs.tangential, c.normal, tangential_velocity, t.stiffness,
                                             t.damping, p.friction, normal_force, dt);
@@ -67,7 +71,7 @@ GS_HD GS_INLINE ContactLoad<Real> contact_load(const PairParams<Real>& p, const 
     const Vec3<Real> rolling_velocity = (c.angular_velocity - spin) * c.effective_radius;
     Real stiffness = p.stiffness_rolling;
     if constexpr (Model == ContactModel::hertz_mindlin) {
-      stiffness = mindlin_tangential_coefficients(p, c.overlap, c.effective_mass, c.effective_radius).stiffness;
+      stiffness = mindlin_tangential_coefficients(p, hertz).stiffness;
     }
     load.torque += rolling_torque(springs.rolling, c.normal, rolling_velocity, stiffness, p.rolling_friction,
                                   normal_force, c.effective_radius, dt);

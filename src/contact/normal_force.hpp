@@ -12,23 +12,35 @@ namespace gs {
 
 // Linear spring-dashpot (Luding 1998): f_n = k_n delta + gamma_n delta',
 // gamma_n = 2 zeta sqrt(m_eff k_n), zeta from the restitution coefficient.
+// `damping_root` is the contact's sqrt(m_eff), shared with the tangential dashpot.
 template <class Real>
 GS_HD GS_INLINE Real linear_normal_force(const PairParams<Real>& p, Real overlap, Real overlap_rate,
-                                          Real effective_mass) {
-  const Real gamma_n = Real(2) * p.damping_ratio * std::sqrt(effective_mass * p.stiffness_normal);
-  return p.stiffness_normal * overlap + gamma_n * overlap_rate;
+                                          Real damping_root) {
+  const Real gamma_n = p.damping_factor_normal * damping_root;
+  return mul_add(p.stiffness_normal, overlap, gamma_n * overlap_rate);
+}
+
+// What the Hertz-Mindlin forces of one contact share: the contact radius
+// a = sqrt(R* delta), and sqrt(a m*), the root both dashpots scale with.
+template <class Real>
+struct HertzContact {
+  Real contact_radius;
+  Real damping_root;
+};
+
+template <class Real>
+GS_HD GS_INLINE HertzContact<Real> hertz_contact(Real overlap, Real effective_mass, Real effective_radius) {
+  const Real a = std::sqrt(effective_radius * overlap);
+  return {a, std::sqrt(a * effective_mass)};
 }
 
 // Hertz: f_n = 4/3 E* sqrt(R*) delta^(3/2) plus Tsuji-type damping
 // 2 sqrt(5/6) zeta sqrt(S_n m*) delta', with S_n = 2 E* sqrt(R* delta).
 template <class Real>
 GS_HD GS_INLINE Real hertz_normal_force(const PairParams<Real>& p, Real overlap, Real overlap_rate,
-                                         Real effective_mass, Real effective_radius) {
-  const Real contact_radius = std::sqrt(effective_radius * overlap);  // a = sqrt(R* delta)
-  const Real s_n = Real(2) * p.youngs_modulus_eff * contact_radius;
-  const Real elastic = Real(4) / Real(3) * p.youngs_modulus_eff * contact_radius * overlap;
-  const Real damping = Real(2) * Real(0.9128709291752769) * p.damping_ratio * std::sqrt(s_n * effective_mass);
-  return elastic + damping * overlap_rate;
+                                         const HertzContact<Real>& h) {
+  const Real elastic = Real(4) / Real(3) * p.youngs_modulus_eff * h.contact_radius * overlap;
+  return mul_add(p.damping_factor_normal * h.damping_root, overlap_rate, elastic);
 }
 
 // Tangential stiffness and damping coefficient of the contact.
@@ -38,19 +50,18 @@ struct TangentialCoefficients {
   Real damping;
 };
 
+// Linear: k_t, gamma_t = 2 zeta sqrt(m_eff k_t); `damping_root` is sqrt(m_eff).
 template <class Real>
 GS_HD GS_INLINE TangentialCoefficients<Real> linear_tangential_coefficients(const PairParams<Real>& p,
-                                                                             Real effective_mass) {
-  return {p.stiffness_tangential, Real(2) * p.damping_ratio * std::sqrt(effective_mass * p.stiffness_tangential)};
+                                                                             Real damping_root) {
+  return {p.stiffness_tangential, p.damping_factor_tangential * damping_root};
 }
 
 // Mindlin: S_t = 8 G* sqrt(R* delta), damping 2 sqrt(5/6) zeta sqrt(S_t m*).
 template <class Real>
-GS_HD GS_INLINE TangentialCoefficients<Real> mindlin_tangential_coefficients(const PairParams<Real>& p, Real overlap,
-                                                                              Real effective_mass,
-                                                                              Real effective_radius) {
-  const Real s_t = Real(8) * p.shear_modulus_eff * std::sqrt(effective_radius * overlap);
-  return {s_t, Real(2) * Real(0.9128709291752769) * p.damping_ratio * std::sqrt(s_t * effective_mass)};
+GS_HD GS_INLINE TangentialCoefficients<Real> mindlin_tangential_coefficients(const PairParams<Real>& p,
+                                                                              const HertzContact<Real>& h) {
+  return {Real(8) * p.shear_modulus_eff * h.contact_radius, p.damping_factor_tangential * h.damping_root};
 }
 
 // Cohesion (simplified JKR): an attraction proportional to the contact area

@@ -13,7 +13,7 @@ template <class Real>
 GS_HD GS_INLINE Vec3<Real> rotate_into_tangent_plane(const Vec3<Real>& spring, const Vec3<Real>& normal) {
   const Real old_length2 = norm2(spring);
   if (old_length2 == Real(0)) return spring;
-  Vec3<Real> projected = spring - normal * dot(spring, normal);
+  const Vec3<Real> projected = mul_add(normal, -dot(spring, normal), spring);
   const Real new_length2 = norm2(projected);
   if (new_length2 == Real(0)) return Vec3<Real>();
   return projected * std::sqrt(old_length2 / new_length2);
@@ -26,13 +26,13 @@ template <class Real>
 GS_HD GS_INLINE Vec3<Real> tangential_force(Vec3<Real>& spring, const Vec3<Real>& normal,
                                             const Vec3<Real>& tangential_velocity, Real stiffness, Real damping,
                                             Real friction, Real normal_force, Real dt) {
-  spring = rotate_into_tangent_plane(spring, normal) + tangential_velocity * dt;
-  Vec3<Real> force = -(spring * stiffness) - tangential_velocity * damping;
+  spring = mul_add(tangential_velocity, dt, rotate_into_tangent_plane(spring, normal));
+  Vec3<Real> force = -mul_add(spring, stiffness, tangential_velocity * damping);
   const Real cap = friction * std::fabs(normal_force);
   const Real magnitude2 = norm2(force);
   if (magnitude2 > cap * cap) {
     force = force * (cap / std::sqrt(magnitude2));
-    spring = -(force + tangential_velocity * damping) * (Real(1) / stiffness);
+    spring = -mul_add(tangential_velocity, damping, force) * (Real(1) / stiffness);
   }
   return force;
 }
@@ -46,7 +46,7 @@ template <class Real>
 GS_HD GS_INLINE Vec3<Real> rolling_torque(Vec3<Real>& spring, const Vec3<Real>& normal,
                                           const Vec3<Real>& rolling_velocity, Real stiffness,
                                           Real rolling_friction, Real normal_force, Real effective_radius, Real dt) {
-  spring = rotate_into_tangent_plane(spring, normal) + rolling_velocity * dt;
+  spring = mul_add(rolling_velocity, dt, rotate_into_tangent_plane(spring, normal));
   Vec3<Real> force = spring * stiffness;
   const Real cap = rolling_friction * std::fabs(normal_force);
   const Real magnitude2 = norm2(force);

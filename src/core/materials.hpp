@@ -11,6 +11,11 @@ struct PairParams {
   Real stiffness_tangential;  // linear: k_t [N/m]; Hertz-Mindlin: unused (from shear_modulus_eff)
   Real stiffness_rolling;     // k_r [N/m], rolling spring (both models)
   Real damping_ratio;         // zeta in (0,1] from restitution: gamma = 2 zeta sqrt(m_eff k)
+  // gamma = factor * sqrt(m_eff) (linear) or factor * sqrt(a m_eff) (Hertz-Mindlin, a = sqrt(R* delta)):
+  // the constant part of the root is taken once per pair of materials, so a
+  // contact takes one square root for both of its dashpots.
+  Real damping_factor_normal;      // linear: 2 zeta sqrt(k_n); Hertz: 2 sqrt(5/6) zeta sqrt(2 E*)
+  Real damping_factor_tangential;  // linear: 2 zeta sqrt(k_t); Mindlin: 2 sqrt(5/6) zeta sqrt(8 G*)
   Real friction;              // Coulomb coefficient mu
   Real rolling_friction;      // dimensionless mu_r: rolling torque cap mu_r R_eff |f_n|
   Real cohesion;              // cohesion energy density k_c [N/m^2]: f = k_c * contact area

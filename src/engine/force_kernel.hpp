@@ -102,7 +102,7 @@ struct ForceKernel {
     Vec3d xi;
     ContactLoad<Real>* total;
     unsigned* touched;
-    GS_HD void operator()(Index j) const {
+    GS_HD GS_INLINE void operator()(Index j) const {
       if (j != i) kernel->add_particle_contact(i, j, xi, *total, *touched);
     }
   };
@@ -169,7 +169,7 @@ struct ForceKernel {
     }
   }
 
-  GS_HD void add_particle_contact(Index i, Index j, const Vec3d& xi, ContactLoad<Real>& total,
+  GS_HD GS_INLINE void add_particle_contact(Index i, Index j, const Vec3d& xi, ContactLoad<Real>& total,
                                   unsigned& touched) const {
     const Vec3d d = xi - position[j];
     const double reach = double(radius[i]) + double(radius[j]);
@@ -178,11 +178,11 @@ struct ForceKernel {
     const double distance = std::sqrt(distance2);
     ContactKinematics<Real> k;
     k.overlap = Real(reach - distance);
-    k.normal = Vec3<Real>(d * (1.0 / distance));
+    k.normal = Vec3<Real>(d) * (Real(1) / Real(distance));  // a unit vector needs no more than force precision
     const Real ri = radius[i], rj = radius[j];
     const Real lever_i = ri - Real(0.5) * k.overlap, lever_j = rj - Real(0.5) * k.overlap;
     const Vec3<Real> wi(angular_velocity[i]), wj(angular_velocity[j]);
-    k.velocity = Vec3<Real>(velocity[i] - velocity[j]) - cross(wi * lever_i + wj * lever_j, k.normal);
+    k.velocity = Vec3<Real>(velocity[i] - velocity[j]) - cross(mul_add(wi, lever_i, wj * lever_j), k.normal);
     k.angular_velocity = wi - wj;
     const Real mi = mass[i], mj = mass[j];
     k.effective_mass = mi * mj / (mi + mj);
@@ -220,7 +220,7 @@ struct ForceKernel {
   }
 
   // slot: the contact's history slot when the caller knows it, else kAnySlot.
-  GS_HD ContactLoad<Real> apply(Index i, ParticleId partner_id, const PairParams<Real>& p,
+  GS_HD GS_INLINE ContactLoad<Real> apply(Index i, ParticleId partner_id, const PairParams<Real>& p,
                                 const ContactKinematics<Real>& k, ContactLoad<Real>& total, unsigned& touched,
                                 int slot = kAnySlot) const {
     ContactSprings<Real> springs;

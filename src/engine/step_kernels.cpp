@@ -29,6 +29,21 @@ double shear_eff(const MaterialSpec& a, const MaterialSpec& b) {
                 2 * (2 - b.poisson_ratio) * (1 + b.poisson_ratio) / b.youngs_modulus);
 }
 
+// gamma = 2 zeta sqrt(m_eff k) (linear) and 2 sqrt(5/6) zeta sqrt(S m_eff)
+// with S_n = 2 E* a, S_t = 8 G* a (Hertz-Mindlin): the factors in front of
+// the contact's own root (contact/normal_force.hpp).
+void set_damping_factors(PairTableHost& t, std::size_t k, ContactModel model) {
+  const double zeta = t.damping_ratio[k];
+  if (model == ContactModel::linear) {
+    t.damping_factor_normal[k] = 2 * zeta * std::sqrt(t.stiffness_normal[k]);
+    t.damping_factor_tangential[k] = 2 * zeta * std::sqrt(t.stiffness_tangential[k]);
+  } else {
+    const double tsuji = 2 * std::sqrt(5.0 / 6.0) * zeta;
+    t.damping_factor_normal[k] = tsuji * std::sqrt(2 * t.youngs_modulus_eff[k]);
+    t.damping_factor_tangential[k] = tsuji * std::sqrt(8 * t.shear_modulus_eff[k]);
+  }
+}
+
 }  // namespace
 
 PairTableHost make_pair_table(const SceneSpec& scene) {
@@ -37,7 +52,8 @@ PairTableHost make_pair_table(const SceneSpec& scene) {
   t.n_materials = n;
   const std::size_t nn = std::size_t(n) * n;
   for (auto* v : {&t.stiffness_normal, &t.stiffness_tangential, &t.stiffness_rolling, &t.damping_ratio, &t.friction,
-                  &t.rolling_friction, &t.cohesion, &t.youngs_modulus_eff, &t.shear_modulus_eff})
+                  &t.rolling_friction, &t.cohesion, &t.youngs_modulus_eff, &t.shear_modulus_eff,
+                  &t.damping_factor_normal, &t.damping_factor_tangential})
     v->assign(nn, 0.0);
   for (const PairSpec& p : scene.pairs) {
     for (const std::size_t k : {std::size_t(p.material_a) * n + p.material_b, std::size_t(p.material_b) * n + p.material_a}) {
@@ -54,6 +70,7 @@ PairTableHost make_pair_table(const SceneSpec& scene) {
         t.youngs_modulus_eff[k] = youngs_eff(a, b);
         t.shear_modulus_eff[k] = shear_eff(a, b);
       }
+      set_damping_factors(t, k, scene.model);
     }
   }
   return t;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/fault.hpp"
+#include "core/materials.hpp"
 #include "core/particle_records.hpp"
 #include "core/particle_store.hpp"
 #include "engine/particle_message.hpp"
@@ -111,9 +112,19 @@ struct KernelChoice {
 struct PairTableHost {
   int n_materials = 0;
   std::vector<double> stiffness_normal, stiffness_tangential, stiffness_rolling, damping_ratio, friction,
-      rolling_friction, cohesion, youngs_modulus_eff, shear_modulus_eff;
+      rolling_friction, cohesion, youngs_modulus_eff, shear_modulus_eff, damping_factor_normal,
+      damping_factor_tangential;
 };
 PairTableHost make_pair_table(const SceneSpec& scene);
+
+// Entry k of the table, as the force laws read it.
+template <class Real>
+PairParams<Real> pair_params(const PairTableHost& t, std::size_t k) {
+  return {Real(t.stiffness_normal[k]),     Real(t.stiffness_tangential[k]), Real(t.stiffness_rolling[k]),
+          Real(t.damping_ratio[k]),        Real(t.damping_factor_normal[k]), Real(t.damping_factor_tangential[k]),
+          Real(t.friction[k]),             Real(t.rolling_friction[k]),      Real(t.cohesion[k]),
+          Real(t.youngs_modulus_eff[k]),   Real(t.shear_modulus_eff[k])};
+}
 
 std::unique_ptr<StepKernels> make_step_kernels(const KernelChoice& choice, const PairTableHost& pairs,
                                                int contact_slots);

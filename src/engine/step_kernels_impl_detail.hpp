@@ -75,13 +75,7 @@ template <class Exec, class Real, ContactModel Model, unsigned Effects>
 void StepKernelsImpl<Exec, Real, Model, Effects>::upload_pairs(const PairTableHost& t) {
   n_materials_ = t.n_materials;
   std::vector<PairParams<Real>> p(std::size_t(t.n_materials) * t.n_materials);
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    p[k] = PairParams<Real>{Real(t.stiffness_normal[k]),   Real(t.stiffness_tangential[k]),
-                            Real(t.stiffness_rolling[k]),  Real(t.damping_ratio[k]),
-                            Real(t.friction[k]),           Real(t.rolling_friction[k]),
-                            Real(t.cohesion[k]),           Real(t.youngs_modulus_eff[k]),
-                            Real(t.shear_modulus_eff[k])};
-  }
+  for (std::size_t k = 0; k < p.size(); ++k) p[k] = pair_params<Real>(t, k);
   pairs_.from_host(p);
 }
 

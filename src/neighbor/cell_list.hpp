@@ -87,7 +87,7 @@ struct CellCandidates {
   const Index* cell_begin;  // per cell + 1: cell c is sorted[cell_begin[c], cell_begin[c + 1])
 
   template <class Visit>
-  GS_HD void for_each(Index /*i*/, const Vec3d& xi, Visit& visit) const {
+  GS_HD GS_INLINE void for_each(Index /*i*/, const Vec3d& xi, Visit& visit) const {
     const CellCoord c = grid.coord(xi);
     const int x_first = c.x > 0 ? c.x - 1 : 0;
     const int x_last = c.x + 1 < grid.dims[0] ? c.x + 1 : c.x;

@@ -33,7 +33,7 @@ struct ListCandidates {
   const Index* begin;  // per owned particle + 1: i's entries are list[begin[i], begin[i + 1])
   const Index* list;   // store indices of the neighbours
   template <class Visit>
-  GS_HD void for_each(Index i, const Vec3d& /*xi*/, Visit& visit) const {
+  GS_HD GS_INLINE void for_each(Index i, const Vec3d& /*xi*/, Visit& visit) const {
     for (Index k = begin[i]; k < begin[i + 1]; ++k) visit(list[k]);
   }
 };
@@ -90,7 +90,7 @@ struct TouchingInIdOrder {
   long long step;
 
   template <class Visit>
-  GS_HD void for_each(Index i, const Vec3d& xi, Visit& visit) const {
+  GS_HD GS_INLINE void for_each(Index i, const Vec3d& xi, Visit& visit) const {
     Index touching[kMaxTouching];
     Index n = 0;
     bool overflow = false;

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "backend/cpu/cpu_arch.hpp"
+
 namespace gs::test {
 namespace {
 
@@ -148,7 +150,7 @@ TEST_F(CliTest, BadExchangeOption) {
 TEST_F(CliTest, VersionAndHelp) {
   const CliResult v = run_cli("--version");
   EXPECT_EQ(v.exit_code, 0);
-  EXPECT_EQ(v.out, "grainstorm " GS_VERSION "\n");
+  EXPECT_EQ(v.out, std::string("grainstorm " GS_VERSION " (host code for ") + gs::host_code_arch() + ")\n");
   const CliResult h = run_cli("--help");
   EXPECT_EQ(h.exit_code, 0);
   EXPECT_NE(h.out.find("usage:"), std::string::npos);
