@@ -1,11 +1,11 @@
 # Instruction set of the host code (GS_CPU_ARCH). The CPU backend's force loop
 # is scalar floating-point arithmetic with many square roots and divisions:
-# x86-64-v3 (AVX2, FMA; every x86-64 CPU since about 2015) runs it about a
-# fifth faster than the x86-64 baseline (docs/PERFORMANCE.md). "auto" takes
+# x86-64-v3 (AVX2, FMA: Intel since Haswell, AMD since Excavator and Zen, but
+# not every Atom, Celeron or Pentium) runs it about a fifth faster than the
+# x86-64 baseline (docs/PERFORMANCE.md). "auto" takes
 # x86-64-v3 when the build machine has it, so a build always runs where it
 # was built; src/backend/cpu/cpu_arch.cpp refuses, with a message, to start
 # on a CPU that lacks the instruction set a binary was built for.
-set(GS_CPU_ARCH_FLAG "")
 set(GS_CPU_ARCH_IS_X86 OFF)
 if(CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64)$")
   set(GS_CPU_ARCH_IS_X86 ON)

@@ -7,6 +7,6 @@
 #else
 #define GS_HD
 // Forced, as nvcc's __forceinline__: left to its size limits, GCC keeps the
-// contact law's pieces as calls in the CPU force loop, a third slower.
+// contact law's pieces as calls in the CPU force loop, half again slower.
 #define GS_INLINE inline __attribute__((always_inline))
 #endif

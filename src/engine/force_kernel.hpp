@@ -78,7 +78,7 @@ struct ForceKernel {
   // most this many per particle; more claim a slot at once).
   static constexpr int kWaitingMeshContacts = 4;
 
-  GS_HD void operator()(Index i) const {
+  GS_HD GS_INLINE void operator()(Index i) const {
     ContactLoad<Real> total;
     unsigned touched = 0;
     const Vec3d xi = position[i];
