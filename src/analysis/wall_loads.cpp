@@ -43,7 +43,7 @@ std::vector<MeshLoad> loads(const SceneSpec& scene, const std::vector<Wall>& wal
       k.effective_radius = s.radius[i];
       ContactSprings<double> springs = stored_springs(on_walls, s.id[i], int(w));
       const ContactLoad<double> load = contact_load<double, Model, Effects>(
-          pair_params<double>(table, std::size_t(s.material[i]) * std::size_t(table.n_materials) + walls[w].material), k, springs, 0.0);
+          pair_params<double>(table, table.at(s.material[i], walls[w].material)), k, springs, 0.0);
       // The wall feels the opposite of what the particle feels.
       const Vec3d centre = walls[w].axis_point + walls[w].shift;
       out[w].force -= load.force;

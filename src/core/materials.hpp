@@ -10,10 +10,10 @@ struct PairParams {
   Real stiffness_normal;      // linear: k_n [N/m]
   Real stiffness_tangential;  // linear: k_t [N/m]; Hertz-Mindlin: unused (from shear_modulus_eff)
   Real stiffness_rolling;     // k_r [N/m], rolling spring (both models)
-  Real damping_ratio;         // zeta in (0,1] from restitution: gamma = 2 zeta sqrt(m_eff k)
-  // gamma = factor * sqrt(m_eff) (linear) or factor * sqrt(a m_eff) (Hertz-Mindlin, a = sqrt(R* delta)):
-  // the constant part of the root is taken once per pair of materials, so a
-  // contact takes one square root for both of its dashpots.
+  // Dashpots, with zeta in (0,1] from the restitution: gamma = factor *
+  // sqrt(m_eff) (linear) or factor * sqrt(a m_eff) (Hertz-Mindlin, a =
+  // sqrt(R* delta)). The constant part of the root is taken once per pair of
+  // materials, so a contact takes one square root for both of its dashpots.
   Real damping_factor_normal;      // linear: 2 zeta sqrt(k_n); Hertz: 2 sqrt(5/6) zeta sqrt(2 E*)
   Real damping_factor_tangential;  // linear: 2 zeta sqrt(k_t); Mindlin: 2 sqrt(5/6) zeta sqrt(8 G*)
   Real friction;              // Coulomb coefficient mu

@@ -32,8 +32,7 @@ double shear_eff(const MaterialSpec& a, const MaterialSpec& b) {
 // gamma = 2 zeta sqrt(m_eff k) (linear) and 2 sqrt(5/6) zeta sqrt(S m_eff)
 // with S_n = 2 E* a, S_t = 8 G* a (Hertz-Mindlin): the factors in front of
 // the contact's own root (contact/normal_force.hpp).
-void set_damping_factors(PairTableHost& t, std::size_t k, ContactModel model) {
-  const double zeta = t.damping_ratio[k];
+void set_damping_factors(PairTableHost& t, std::size_t k, ContactModel model, double zeta) {
   if (model == ContactModel::linear) {
     t.damping_factor_normal[k] = 2 * zeta * std::sqrt(t.stiffness_normal[k]);
     t.damping_factor_tangential[k] = 2 * zeta * std::sqrt(t.stiffness_tangential[k]);
@@ -51,16 +50,15 @@ PairTableHost make_pair_table(const SceneSpec& scene) {
   PairTableHost t;
   t.n_materials = n;
   const std::size_t nn = std::size_t(n) * n;
-  for (auto* v : {&t.stiffness_normal, &t.stiffness_tangential, &t.stiffness_rolling, &t.damping_ratio, &t.friction,
+  for (auto* v : {&t.stiffness_normal, &t.stiffness_tangential, &t.stiffness_rolling, &t.friction,
                   &t.rolling_friction, &t.cohesion, &t.youngs_modulus_eff, &t.shear_modulus_eff,
                   &t.damping_factor_normal, &t.damping_factor_tangential})
     v->assign(nn, 0.0);
   for (const PairSpec& p : scene.pairs) {
-    for (const std::size_t k : {std::size_t(p.material_a) * n + p.material_b, std::size_t(p.material_b) * n + p.material_a}) {
+    for (const std::size_t k : {t.at(p.material_a, p.material_b), t.at(p.material_b, p.material_a)}) {
       t.stiffness_normal[k] = p.stiffness_normal;
       t.stiffness_tangential[k] = p.stiffness_tangential;
       t.stiffness_rolling[k] = p.stiffness_rolling;
-      t.damping_ratio[k] = damping_ratio_from_restitution(p.restitution);
       t.friction[k] = p.friction;
       t.rolling_friction[k] = p.rolling_friction;
       t.cohesion[k] = p.cohesion_energy_density;
@@ -70,7 +68,7 @@ PairTableHost make_pair_table(const SceneSpec& scene) {
         t.youngs_modulus_eff[k] = youngs_eff(a, b);
         t.shear_modulus_eff[k] = shear_eff(a, b);
       }
-      set_damping_factors(t, k, scene.model);
+      set_damping_factors(t, k, scene.model, damping_ratio_from_restitution(p.restitution));
     }
   }
   return t;

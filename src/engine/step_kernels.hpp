@@ -111,19 +111,20 @@ struct KernelChoice {
 // The material pair table in force precision, n_materials^2 entries.
 struct PairTableHost {
   int n_materials = 0;
-  std::vector<double> stiffness_normal, stiffness_tangential, stiffness_rolling, damping_ratio, friction,
-      rolling_friction, cohesion, youngs_modulus_eff, shear_modulus_eff, damping_factor_normal,
-      damping_factor_tangential;
+  std::vector<double> stiffness_normal, stiffness_tangential, stiffness_rolling, damping_factor_normal,
+      damping_factor_tangential, friction, rolling_friction, cohesion, youngs_modulus_eff, shear_modulus_eff;
+  // Entry of the pair of materials (a, b).
+  std::size_t at(int a, int b) const { return std::size_t(a) * std::size_t(n_materials) + std::size_t(b); }
 };
 PairTableHost make_pair_table(const SceneSpec& scene);
 
 // Entry k of the table, as the force laws read it.
 template <class Real>
 PairParams<Real> pair_params(const PairTableHost& t, std::size_t k) {
-  return {Real(t.stiffness_normal[k]),     Real(t.stiffness_tangential[k]), Real(t.stiffness_rolling[k]),
-          Real(t.damping_ratio[k]),        Real(t.damping_factor_normal[k]), Real(t.damping_factor_tangential[k]),
-          Real(t.friction[k]),             Real(t.rolling_friction[k]),      Real(t.cohesion[k]),
-          Real(t.youngs_modulus_eff[k]),   Real(t.shear_modulus_eff[k])};
+  return {Real(t.stiffness_normal[k]),      Real(t.stiffness_tangential[k]),      Real(t.stiffness_rolling[k]),
+          Real(t.damping_factor_normal[k]), Real(t.damping_factor_tangential[k]), Real(t.friction[k]),
+          Real(t.rolling_friction[k]),      Real(t.cohesion[k]),                  Real(t.youngs_modulus_eff[k]),
+          Real(t.shear_modulus_eff[k])};
 }
 
 std::unique_ptr<StepKernels> make_step_kernels(const KernelChoice& choice, const PairTableHost& pairs,
