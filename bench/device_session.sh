@@ -2,7 +2,7 @@
 # One session on a GPU machine: build with CUDA, run the whole test suite on
 # both backends, compare CPU and GPU runs of the demo, then the benchmarks.
 # Results go to $OUT (default ./device_out). Usage, from the repository root:
-#   bench/device_session.sh [all|tests|bench|effects|mixer|mixprofile|mixacc|accuracy|output|scaling][,...]
+#   bench/device_session.sh [all|tests|bench|baseline|effects|mixer|mixprofile|mixacc|accuracy|output|scaling][,...]
 # METIS and yaml-cpp may be carried as unpacked Debian packages in carry/root
 # (see docs/PERFORMANCE.md) when the machine lacks them.
 set -uo pipefail
@@ -57,6 +57,24 @@ if wants bench; then
   } > "$OUT/bench.log" 2>&1
   cat "$OUT/bench.log" >> "$log"
 fi
+if wants baseline && [[ -d carry/base ]]; then
+  # Before against after in the same lease: the tree at an earlier commit, unpacked into carry/base
+  # (git archive <commit> | tar -x -C carry/base), built beside build-gpu and timed alternately.
+  cmake -S carry/base -B build-base -DCMAKE_BUILD_TYPE=Release -DGS_ENABLE_CUDA=ON "${extra[@]}" >> "$log" 2>&1 &&
+    cmake --build build-base -j 16 --target settle_bench >> "$log" 2>&1 || echo "BASE BUILD FAILED" >> "$log"
+  {
+    for round in 1 2; do
+      for b in build-base build-gpu; do
+        for args in "--effects friction" "--effects rolling" "--model hertz --effects friction"; do
+          echo "== $b round $round: $args"
+          $b/bench/settle_bench --backend cuda --n 4000000 --steps 200 $args
+        done
+      done
+    done
+  } > "$OUT/baseline.log" 2>&1
+  cat "$OUT/baseline.log" >> "$log"
+fi
+
 if wants effects; then
   # Only the effects a scene calls for: the same bed, effect by effect, on the GPU and the CPU.
   b=build-gpu/bench/settle_bench
