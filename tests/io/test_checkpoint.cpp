@@ -248,7 +248,9 @@ TEST(Checkpoint, DescribeReportsIntegrity) {
   ScratchDir dir;
   const std::string path = dir.file("checkpoint.h5");
   write_checkpoint(path, sample_checkpoint());
-  const std::string text = describe_h5(path);
+  const H5Description d = describe_h5(path);
+  EXPECT_FALSE(d.damaged);
+  const std::string& text = d.text;
   for (const char* expected : {"kind:          checkpoint", "step 123456", "particles:     6",
                                "history:       4 slots per particle, tangential springs yes, rolling springs no",
                                "decomposition: 3 rank(s), slab axis z", "scene hash:    0x0123456789abcdef",

@@ -124,7 +124,7 @@ TEST(Snapshot, DescribeSummarisesIt) {
   const std::string path = dir.file("s.h5");
   const ParticleSnapshot s = test::sample_particles(4);
   write_snapshot(path, s, default_snapshot_fields(), test::sample_walls(), sample_metadata(4));
-  const std::string text = describe_h5(path);
+  const std::string text = describe_h5(path).text;
   for (const char* expected : {"kind:          snapshot", "time:          0.125 s, step 250",
                                "particles:     4", "bounding box:  [0.1, -0.628571, 0.111111] to [1.1, -0.2, 0.114111]",
                                "walls:         2 (1 plane, 0 disk, 1 cylinder)", "scene hash:    0x", GS_VERSION,
