@@ -19,7 +19,7 @@ namespace gs {
 struct XdmfEntry {
   double time = 0;
   long long step = 0;
-  std::string h5_file;  // as the .xmf refers to it: relative to the .xdmf file's directory
+  std::string h5_file;  // as the index refers to it: relative to the .xdmf file's directory
   std::size_t particle_count = 0;
   SnapshotFields fields;
   std::vector<WallSurfaceInfo> walls;  // the snapshot's wall surfaces (group wall_surfaces), if any
