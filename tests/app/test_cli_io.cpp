@@ -98,6 +98,49 @@ TEST(CliInfo, ParticleCountBeyondTheDataIsAnErrorNotBadAlloc) {
   EXPECT_EQ(r.err.find("bad_alloc"), std::string::npos) << r.err;
 }
 
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// A run in a box of six planes, checkpointed at step 92 and restarted from it
+// into the same directory: the XDMF index keeps the six wall surfaces of
+// every snapshot, those written before the restart (read back from the
+// files) and after.
+TEST(CliRun, RestartKeepsTheWallsInTheIndex) {
+  ScratchDir dir;
+  std::ofstream(dir.file("box.yaml")) << R"(domain: {min: [-0.001, -0.001, -0.001], max: [0.021, 0.021, 0.041]}
+gravity: [0, 0, -9.81]
+materials:
+  - {name: glass, density: 2500}
+pairs:
+  - {materials: [glass, glass], stiffness_normal: 1000, restitution: 0.5}
+walls:
+  - box: {min: [0, 0, 0], max: [0.02, 0.02, 0.04]}
+    material: glass
+particles:
+  - random_fill:
+      {material: glass, region: {box: {min: [0.001, 0.001, 0.001], max: [0.019, 0.019, 0.039]}}, count: 50,
+       radius: 0.0008, seed: 3}
+time_step: {absolute: 0.00002}
+duration: 0.004
+output: {interval: 0.001, format: hdf5, checkpoint_interval: 0.002}
+)";
+  const std::string out = dir.file("out");
+  const CliResult first = run_cli(dir, "run '" + dir.file("box.yaml") + "' --backend cpu --out '" + out + "'");
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const CliResult again = run_cli(dir, "run '" + dir.file("box.yaml") + "' --backend cpu --out '" + out +
+                                           "' --restart '" + out + "/checkpoint_0000000100.h5'");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  const std::string xdmf = read_text(out + "/particles.xdmf");
+  EXPECT_EQ(count(xdmf, "<Grid Name=\"step_"), 5u) << xdmf;
+  EXPECT_EQ(count(xdmf, "<Grid Name=\"walls_"), 5u) << xdmf;
+  EXPECT_EQ(count(xdmf, "<Grid Name=\"box.zmin\""), 5u) << xdmf;
+  EXPECT_EQ(count(xdmf, ":/wall_surfaces/5/vertices"), 5u) << xdmf;
+  EXPECT_EQ(count(xdmf, ":/wall_surfaces/6/"), 0u) << xdmf;
+}
+
 TEST(CliHelp, ListsEveryRunOption) {
   ScratchDir dir;
   const CliResult r = run_cli(dir, "--help");
