@@ -9,8 +9,12 @@ namespace gs {
 
 int command_info(const std::vector<std::string>& args) {
   if (args.size() != 2) throw std::invalid_argument("usage: grainstorm info FILE.h5");
-  std::fputs(describe_h5(args[1]).c_str(), stdout);
-  return 0;
+  const H5Description d = describe_h5(args[1]);
+  std::fputs(d.text.c_str(), stdout);
+  if (!d.damaged) return 0;
+  // A script that checks a checkpoint before restarting from it reads the exit code.
+  std::fprintf(stderr, "grainstorm: error: %s is damaged (see its integrity line)\n", args[1].c_str());
+  return 1;
 }
 
 }  // namespace gs

@@ -13,17 +13,9 @@
 #include "io/h5_snapshot.hpp"
 #include "io/particle_csv.hpp"
 #include "io/restart.hpp"
+#include "io/text_file.hpp"
 
 namespace gs {
-namespace {
-
-std::FILE* open_for_append(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "a");
-  if (!f) throw std::runtime_error("cannot write " + path);
-  return f;
-}
-
-}  // namespace
 
 RunOutput::RunOutput(const SceneSpec& scene, const std::string& directory, Transport& transport,
                      std::uint64_t scene_hash)
@@ -33,8 +25,8 @@ RunOutput::RunOutput(const SceneSpec& scene, const std::string& directory, Trans
     throw std::invalid_argument("output.fields: contact_count needs friction or rolling resistance (contact history)");
   if (transport_.rank() != 0) return;
   std::filesystem::create_directories(directory_);
-  log_ = open_for_append(directory_ + "/run.log");
-  timeseries_ = open_for_append(directory_ + "/timeseries.csv");
+  log_ = open_for_writing(directory_ + "/run.log", "a");
+  timeseries_ = open_for_writing(directory_ + "/timeseries.csv", "a");
   if (scene.mixing) {
     const std::filesystem::path log_path(scene.mixing->output);
     mixing_log_ = std::make_unique<MixingLog>(
@@ -89,9 +81,10 @@ void RunOutput::snapshot(const Simulation& sim) {
     m.scene_path = scene_.path;
     m.wall_names = scene_.wall_names;
     if (fields_.has(SnapshotField::contact_count)) m.contact_count = contacts;
+    m.domain = DomainBox{scene_.domain_min, scene_.domain_max};
     const std::string name = snapshot_h5_name(s.step);
     write_snapshot(directory_ + "/" + name, s, fields_, sim.walls(), m);
-    series_.push_back(xdmf_entry(name, s, fields_));
+    series_.push_back(xdmf_entry(name, s, fields_, read_snapshot_wall_surfaces(directory_ + "/" + name)));
     write_xdmf_series(directory_ + "/particles.xdmf", series_);
     const MeshSet meshes = sim.meshes();
     if (meshes.n_triangles() > 0) {
@@ -116,7 +109,7 @@ void RunOutput::snapshot(const Simulation& sim) {
       std::fprintf(timeseries_, ",%.17g", x);
   for (double x : mesh_load) std::fprintf(timeseries_, ",%.17g", x);
   std::fprintf(timeseries_, "\n");
-  std::fflush(timeseries_);
+  flush_checked(timeseries_, directory_ + "/timeseries.csv");
 }
 
 void RunOutput::mixing(const Simulation& sim) {
@@ -143,6 +136,7 @@ void RunOutput::resume(long long step) {
     e.h5_file = name;
     e.particle_count = std::size_t(h5::read_attribute<std::int64_t>(f, "/", "particle_count"));
     e.fields = fields_;
+    e.walls = read_wall_surface_info(f, "wall_surfaces");
     series_.push_back(e);
     const std::string mesh_file = meshes_h5_name(s);
     if (std::filesystem::exists(directory_ + "/" + mesh_file)) {

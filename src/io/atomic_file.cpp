@@ -9,21 +9,21 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "io/text_file.hpp"
+
 namespace gs {
 namespace {
 
-std::string os_error(const std::string& what, const std::string& path) {
-  return what + " " + path + ": " + std::strerror(errno);
-}
-
 void sync_file(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd < 0) throw std::runtime_error(os_error("cannot open for fsync", path));
+  if (fd < 0) {
+    const int error = errno;
+    throw std::runtime_error(os_error("cannot open for fsync " + path, error));
+  }
   const bool ok = ::fsync(fd) == 0;
-  const int fsync_errno = errno;
+  const int error = errno;
   ::close(fd);
-  errno = fsync_errno;
-  if (!ok) throw std::runtime_error(os_error("fsync failed on", path));
+  if (!ok) throw std::runtime_error(os_error("fsync failed on " + path, error));
 }
 
 // Makes the rename itself durable. Best effort: some file systems refuse to
@@ -48,8 +48,10 @@ void write_atomically(const std::string& path, const std::function<void(const st
   try {
     write(temporary);
     sync_file(temporary);
-    if (std::rename(temporary.c_str(), path.c_str()) != 0)
-      throw std::runtime_error(os_error("cannot rename " + temporary + " to", path));
+    if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+      const int error = errno;
+      throw std::runtime_error(os_error("cannot rename " + temporary + " to " + path, error));
+    }
   } catch (...) {
     std::remove(temporary.c_str());
     throw;

@@ -92,8 +92,7 @@ Checkpoint read_contents(const h5::File& f) {
   c.time = h5::read_attribute<double>(f, "/", "time");
   c.scene_hash = h5::read_attribute<std::uint64_t>(f, "/", "scene_hash");
   c.random_state = h5::read_attribute<std::uint64_t>(f, "/", "random_state");
-  const auto n = h5::read_attribute<std::int64_t>(f, "/", "particle_count");
-  if (n < 0) refuse(f.path(), "negative particle count " + std::to_string(n));
+  const auto n = h5::read_row_count(f, "/", "particle_count", "particles/id");
   c.particles = read_particles(f, hsize_t(n));
   c.history = read_history(f, hsize_t(n));
   c.walls = read_walls(f, "walls");

@@ -82,7 +82,7 @@ void describe_checkpoint(std::ostream& out, const h5::File& f) {
 
 }  // namespace
 
-std::string describe_h5(const std::string& path) {
+H5Description describe_h5(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw std::runtime_error(path + ": no such file");
   h5::silence_library_errors();
@@ -99,7 +99,7 @@ std::string describe_h5(const std::string& path) {
                         ", written by grainstorm " + h5::read_string_attribute(f, "/", "grainstorm_version"));
   line(out, "time", format("%.9g", h5::read_attribute<double>(f, "/", "time")) + " s, step " +
                         std::to_string(h5::read_attribute<std::int64_t>(f, "/", "step")));
-  const auto n = h5::read_attribute<std::int64_t>(f, "/", "particle_count");
+  const auto n = h5::read_row_count(f, "/", "particle_count", "particles/position");
   describe_particles(out, f, n);
   describe_walls(out, f);
   if (checkpoint) describe_checkpoint(out, f);
@@ -111,15 +111,17 @@ std::string describe_h5(const std::string& path) {
     if (!scene.empty()) line(out, "scene", scene);
   }
   f.close();
+  bool damaged = false;
   if (checkpoint) {
     try {
       read_checkpoint(path);
       line(out, "integrity", "complete, checksum matches");
     } catch (const CheckpointError& e) {
       line(out, "integrity", std::string("DAMAGED: ") + e.what());
+      damaged = true;
     }
   }
-  return out.str();
+  return {out.str(), damaged};
 }
 
 }  // namespace gs

@@ -7,8 +7,13 @@
 
 namespace gs {
 
+struct H5Description {
+  std::string text;      // one "key: value" line per item
+  bool damaged = false;  // a checkpoint that read_checkpoint refuses (its cause is in text)
+};
+
 // Throws std::runtime_error when the file is missing, not HDF5, or neither a
 // grainstorm snapshot nor a checkpoint.
-std::string describe_h5(const std::string& path);
+H5Description describe_h5(const std::string& path);
 
 }  // namespace gs

@@ -112,12 +112,17 @@ std::vector<hsize_t> dims_of(const File& f, const std::string& path) {
   return dims;
 }
 
+void require_shape(const File& f, const std::string& path, const std::vector<hsize_t>& dims) {
+  const std::vector<hsize_t> stored = dims_of(f, path);
+  if (stored != dims)
+    throw FormatError("dataset " + where(f, path) + " has shape " + shape_text(stored) + ", expected " +
+                      shape_text(dims));
+}
+
 void read_raw(const File& f, const std::string& path, hid_t memory_type, hid_t file_type, void* data,
               const std::vector<hsize_t>& dims) {
   const std::string at = where(f, path);
-  const std::vector<hsize_t> stored = dims_of(f, path);
-  if (stored != dims)
-    throw FormatError("dataset " + at + " has shape " + shape_text(stored) + ", expected " + shape_text(dims));
+  require_shape(f, path, dims);
   Handle set = open_dataset(f, path);
   Handle type(GS_H5_CHECK(H5Dget_type(set.get()), at), H5Tclose);
   if (GS_H5_CHECK(H5Tequal(type.get(), file_type), at) <= 0)
@@ -127,12 +132,14 @@ void read_raw(const File& f, const std::string& path, hid_t memory_type, hid_t f
 }
 
 std::vector<Vec3d> read_vec3(const File& f, const std::string& path, hsize_t n) {
+  require_shape(f, path, {n, 3});
   std::vector<Vec3d> v(n);
   read_raw(f, path, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, v.data(), {n, 3});
   return v;
 }
 
 std::vector<Quaternion> read_quaternions(const File& f, const std::string& path, hsize_t n) {
+  require_shape(f, path, {n, 4});
   std::vector<Quaternion> q(n);
   read_raw(f, path, H5T_NATIVE_FLOAT, H5T_IEEE_F32LE, q.data(), {n, 4});
   return q;
@@ -199,6 +206,18 @@ std::string read_string_attribute(const File& f, const std::string& object, cons
   GS_H5_CHECK(H5Tset_strpad(memory.get(), H5T_STR_NULLTERM), at);
   GS_H5_CHECK(H5Aread(attr.get(), memory.get(), buffer.data()), at);
   return std::string(buffer.c_str());
+}
+
+std::int64_t read_row_count(const File& f, const std::string& object, const std::string& name,
+                            const std::string& dataset) {
+  const auto count = read_attribute<std::int64_t>(f, object, name);
+  const std::vector<hsize_t> dims = dims_of(f, dataset);
+  if (count < 0 || dims.empty() || dims[0] != hsize_t(count))
+    throw FormatError("attribute '" + name + "' of " + where(f, object) + " is " + std::to_string(count) +
+                      ", but dataset " + where(f, dataset) + " has shape " + shape_text(dims) + ": " +
+                      (dims.empty() ? "no rows" : std::to_string(dims[0]) + " rows") +
+                      " (the file is damaged or was not written by grainstorm)");
+  return count;
 }
 
 std::vector<std::string> list_group(const File& f, const std::string& path) {

@@ -96,8 +96,13 @@ std::vector<hsize_t> dims_of(const File& f, const std::string& path);
 // `dims` and the file type of T (no silent conversion); FormatError if not.
 void read_raw(const File& f, const std::string& path, hid_t memory_type, hid_t file_type, void* data,
               const std::vector<hsize_t>& dims);
+// FormatError unless dataset `path` has exactly shape `dims`: the readers
+// check it before they allocate, so a count that a file gets wrong (or a
+// damaged one) is reported instead of allocating for it.
+void require_shape(const File& f, const std::string& path, const std::vector<hsize_t>& dims);
 template <class T>
 std::vector<T> read_array(const File& f, const std::string& path, const std::vector<hsize_t>& dims) {
+  require_shape(f, path, dims);
   hsize_t count = 1;
   for (hsize_t d : dims) count *= d;
   std::vector<T> out(count);
@@ -128,6 +133,12 @@ T read_attribute(const File& f, const std::string& object, const std::string& na
   return value;
 }
 std::string read_string_attribute(const File& f, const std::string& object, const std::string& name);
+
+// The int64 count attribute `name` of `object` ("particle_count" of "/"),
+// checked against the rows of `dataset`, which holds one row per counted
+// item: FormatError naming both when it is negative or they disagree.
+std::int64_t read_row_count(const File& f, const std::string& object, const std::string& name,
+                            const std::string& dataset);
 
 // Names of the links directly under group `path`, in name order.
 std::vector<std::string> list_group(const File& f, const std::string& path);

@@ -1,11 +1,12 @@
 #include "io/h5_meshes.hpp"
 
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "io/atomic_file.hpp"
 #include "io/h5_io.hpp"
+#include "io/text_file.hpp"
 
 namespace gs {
 
@@ -32,28 +33,26 @@ void write_meshes_h5(const std::string& path, const MeshSet& meshes, double time
 }
 
 void write_mesh_xdmf(const std::string& path, const std::vector<MeshSeriesEntry>& entries) {
-  write_atomically(path, [&](const std::string& temporary) {
-    std::ofstream out(temporary);
-    out << "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n"
-        << "    <Grid Name=\"meshes\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-    for (const MeshSeriesEntry& e : entries) {
-      char time[32];
-      std::snprintf(time, sizeof(time), "%.17g", e.time);
-      out << "      <Grid Name=\"meshes\" GridType=\"Uniform\">\n        <Time Value=\"" << time << "\"/>\n"
-          << "        <Topology TopologyType=\"Triangle\" NumberOfElements=\"" << e.triangles << "\">\n"
-          << "          <DataItem Dimensions=\"" << e.triangles << " 3\" NumberType=\"Int\" Precision=\"4\" "
-          << "Format=\"HDF\">" << e.h5_file << ":/triangles</DataItem>\n        </Topology>\n"
-          << "        <Geometry GeometryType=\"XYZ\">\n          <DataItem Dimensions=\"" << e.vertices
-          << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << e.h5_file
-          << ":/vertices</DataItem>\n        </Geometry>\n"
-          << "        <Attribute Name=\"mesh\" AttributeType=\"Scalar\" Center=\"Cell\">\n          <DataItem "
-          << "Dimensions=\"" << e.triangles << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << e.h5_file
-          << ":/mesh</DataItem>\n        </Attribute>\n      </Grid>\n";
-    }
-    out << "    </Grid>\n  </Domain>\n</Xdmf>\n";
-    out.close();
-    if (!out) throw std::runtime_error("error writing " + temporary);
-  });
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n"
+      << "    <Grid Name=\"meshes\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const MeshSeriesEntry& e : entries) {
+    char time[32];
+    std::snprintf(time, sizeof(time), "%.17g", e.time);
+    out << "      <Grid Name=\"meshes\" GridType=\"Uniform\">\n        <Time Value=\"" << time << "\"/>\n"
+        << "        <Topology TopologyType=\"Triangle\" NumberOfElements=\"" << e.triangles << "\">\n"
+        << "          <DataItem Dimensions=\"" << e.triangles << " 3\" NumberType=\"Int\" Precision=\"4\" "
+        << "Format=\"HDF\">" << e.h5_file << ":/triangles</DataItem>\n        </Topology>\n"
+        << "        <Geometry GeometryType=\"XYZ\">\n          <DataItem Dimensions=\"" << e.vertices
+        << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << e.h5_file
+        << ":/vertices</DataItem>\n        </Geometry>\n"
+        << "        <Attribute Name=\"mesh\" AttributeType=\"Scalar\" Center=\"Cell\">\n          <DataItem "
+        << "Dimensions=\"" << e.triangles << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << e.h5_file
+        << ":/mesh</DataItem>\n        </Attribute>\n      </Grid>\n";
+  }
+  out << "    </Grid>\n  </Domain>\n</Xdmf>\n";
+  const std::string text = out.str();
+  write_atomically(path, [&](const std::string& temporary) { write_text_file(temporary, text); });
 }
 
 }  // namespace gs

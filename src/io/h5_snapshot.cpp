@@ -79,7 +79,7 @@ ParticleSnapshot read_snapshot(const std::string& path) {
   ParticleSnapshot s;
   s.time = h5::read_attribute<double>(f, "/", "time");
   s.step = h5::read_attribute<std::int64_t>(f, "/", "step");
-  const auto n = hsize_t(h5::read_attribute<std::int64_t>(f, "/", "particle_count"));
+  const auto n = hsize_t(h5::read_row_count(f, "/", "particle_count", "particles/position"));
   read_if_present(f, SnapshotField::id, n, s.id);
   read_if_present(f, SnapshotField::material, n, s.material);
   read_if_present(f, SnapshotField::marker, n, s.marker);
@@ -88,6 +88,11 @@ ParticleSnapshot read_snapshot(const std::string& path) {
   if (h5::exists(f, "particles/position")) s.position = h5::read_vec3(f, "particles/position", n);
   if (h5::exists(f, "particles/velocity")) s.velocity = h5::read_vec3(f, "particles/velocity", n);
   return s;
+}
+
+std::vector<WallSurfaceInfo> read_snapshot_wall_surfaces(const std::string& path) {
+  const h5::File f = h5::File::open_read_only(path);
+  return read_wall_surface_info(f, "wall_surfaces");
 }
 
 std::string snapshot_h5_name(long long step) {
@@ -113,6 +118,7 @@ void write_snapshot(const std::string& path, const ParticleSnapshot& s, const Sn
       h5::write_string_attribute(f, dataset, "units", field_info(field).units);
     }
     write_walls(f, "walls", walls, metadata.wall_names);
+    if (metadata.domain) write_wall_surfaces(f, "wall_surfaces", walls, metadata.wall_names, *metadata.domain);
     f.close();
   });
 }

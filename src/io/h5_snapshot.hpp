@@ -8,7 +8,10 @@
 #include <vector>
 
 #include "engine/simulation.hpp"
+#include <optional>
+
 #include "io/snapshot_fields.hpp"
+#include "io/wall_surfaces.hpp"
 #include "walls/wall.hpp"
 
 namespace gs {
@@ -21,6 +24,8 @@ struct SnapshotMetadata {
   std::vector<std::string> wall_names;       // empty, or one name per wall
   std::vector<std::uint16_t> contact_count;  // contacts per particle in snapshot order;
                                              // required when the fields select contact_count
+  std::optional<DomainBox> domain;           // when set, the walls' surfaces are written too
+                                             // (group wall_surfaces), planes clipped to it
 };
 
 // particles_<step, 10 digits>.h5
@@ -37,5 +42,7 @@ void write_snapshot(const std::string& path, const ParticleSnapshot& s, const Sn
 // h5::FormatError when the file is not a grainstorm snapshot or a field has
 // the wrong shape or type.
 ParticleSnapshot read_snapshot(const std::string& path);
+// The wall surfaces a snapshot holds (empty when it was written without a domain).
+std::vector<WallSurfaceInfo> read_snapshot_wall_surfaces(const std::string& path);
 
 }  // namespace gs

@@ -1,11 +1,12 @@
 #include "io/xdmf_series.hpp"
 
+#include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include "io/atomic_file.hpp"
+#include "io/text_file.hpp"
 
 namespace gs {
 namespace {
@@ -63,15 +64,41 @@ void grid(std::ostream& out, const XdmfEntry& e) {
   out << "      </Grid>\n";
 }
 
+// One time of the walls collection: a spatial collection of one triangle
+// grid per wall, at the pose the snapshot stored.
+void wall_grids(std::ostream& out, const XdmfEntry& e) {
+  char name[40];
+  std::snprintf(name, sizeof(name), "walls_%010lld", e.step);
+  out << "      <Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
+      << "        <Time Value=\"" << exact(e.time) << "\"/>\n";
+  for (std::size_t k = 0; k < e.walls.size(); ++k) {
+    const WallSurfaceInfo& w = e.walls[k];
+    const std::string at = xml_escaped(e.h5_file) + ":/wall_surfaces/" + std::to_string(k);
+    out << "        <Grid Name=\"" << xml_escaped(w.name) << "\" GridType=\"Uniform\">\n"
+        << "          <Topology TopologyType=\"Triangle\" NumberOfElements=\"" << w.triangles << "\">\n"
+        << "            <DataItem Dimensions=\"" << w.triangles
+        << " 3\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << at << "/triangles</DataItem>\n"
+        << "          </Topology>\n"
+        << "          <Geometry GeometryType=\"XYZ\">\n"
+        << "            <DataItem Dimensions=\"" << w.vertices
+        << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << at << "/vertices</DataItem>\n"
+        << "          </Geometry>\n"
+        << "        </Grid>\n";
+  }
+  out << "      </Grid>\n";
+}
+
 }  // namespace
 
-XdmfEntry xdmf_entry(const std::string& h5_file, const ParticleSnapshot& s, const SnapshotFields& fields) {
+XdmfEntry xdmf_entry(const std::string& h5_file, const ParticleSnapshot& s, const SnapshotFields& fields,
+                     std::vector<WallSurfaceInfo> walls) {
   XdmfEntry e;
   e.time = s.time;
   e.step = s.step;
   e.h5_file = h5_file;
   e.particle_count = s.size();
   e.fields = fields;
+  e.walls = std::move(walls);
   return e;
 }
 
@@ -83,21 +110,23 @@ std::string xdmf_series_text(const std::vector<XdmfEntry>& entries) {
       << "  <Domain>\n"
       << "    <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
   for (const XdmfEntry& e : entries) grid(out, e);
-  out << "    </Grid>\n"
-      << "  </Domain>\n"
+  out << "    </Grid>\n";
+  // Walls in a collection of their own, beside the particles, so that
+  // readers of the particle grids see them unchanged.
+  if (std::any_of(entries.begin(), entries.end(), [](const XdmfEntry& e) { return !e.walls.empty(); })) {
+    out << "    <Grid Name=\"walls\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (const XdmfEntry& e : entries)
+      if (!e.walls.empty()) wall_grids(out, e);
+    out << "    </Grid>\n";
+  }
+  out << "  </Domain>\n"
       << "</Xdmf>\n";
   return out.str();
 }
 
 void write_xdmf_series(const std::string& path, const std::vector<XdmfEntry>& entries) {
   const std::string text = xdmf_series_text(entries);
-  write_atomically(path, [&](const std::string& temporary) {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot write " + temporary);
-    out << text;
-    out.close();
-    if (!out) throw std::runtime_error("error writing " + temporary);
-  });
+  write_atomically(path, [&](const std::string& temporary) { write_text_file(temporary, text); });
 }
 
 }  // namespace gs

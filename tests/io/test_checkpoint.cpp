@@ -244,16 +244,67 @@ TEST(Checkpoint, UnfinishedFileIsRefused) {
   EXPECT_NE(refusal(path).find("'complete' marker is missing"), std::string::npos) << refusal(path);
 }
 
+// particle_count = 2^33 with datasets of 6 rows: refused, naming the
+// attribute, the dataset and both sizes, before anything is allocated for it
+// (std::bad_alloc before).
+TEST(Checkpoint, ParticleCountThatDisagreesWithTheDatasetsIsRefused) {
+  ScratchDir dir;
+  const std::string path = dir.file("checkpoint.h5");
+  write_checkpoint(path, sample_checkpoint());
+  edit_h5(path, [](hid_t f) {
+    const hid_t a = H5Aopen(f, "particle_count", H5P_DEFAULT);
+    const std::int64_t count = std::int64_t(1) << 33;
+    ASSERT_GE(H5Awrite(a, H5T_NATIVE_INT64, &count), 0);
+    H5Aclose(a);
+  });
+  const std::string why = refusal(path);
+  for (const char* expected : {"particle_count", "8589934592", "/particles/id", "shape (6)", path.c_str()})
+    EXPECT_NE(why.find(expected), std::string::npos) << "missing '" << expected << "' in: " << why;
+  EXPECT_EQ(why.find("bad_alloc"), std::string::npos) << why;
+  // info still reads the header, then reports the file as damaged.
+  EXPECT_THROW(describe_h5(path), h5::FormatError);
+}
+
+// A dataset whose rows disagree with the others is refused by its shape.
+TEST(Checkpoint, DatasetOfTheWrongShapeIsRefused) {
+  ScratchDir dir;
+  const std::string path = dir.file("checkpoint.h5");
+  write_checkpoint(path, sample_checkpoint());
+  edit_h5(path, [](hid_t f) {
+    ASSERT_GE(H5Ldelete(f, "particles/velocity", H5P_DEFAULT), 0);
+    const hsize_t dims[2] = {5, 3};
+    const hid_t space = H5Screate_simple(2, dims, nullptr);
+    const hid_t d = H5Dcreate2(f, "particles/velocity", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    ASSERT_GE(d, 0);
+    H5Dclose(d);
+    H5Sclose(space);
+  });
+  const std::string why = refusal(path);
+  EXPECT_NE(why.find("/particles/velocity has shape (5, 3), expected (6, 3)"), std::string::npos) << why;
+}
+
 TEST(Checkpoint, DescribeReportsIntegrity) {
   ScratchDir dir;
   const std::string path = dir.file("checkpoint.h5");
   write_checkpoint(path, sample_checkpoint());
-  const std::string text = describe_h5(path);
+  const H5Description d = describe_h5(path);
+  EXPECT_FALSE(d.damaged);
+  const std::string& text = d.text;
   for (const char* expected : {"kind:          checkpoint", "step 123456", "particles:     6",
                                "history:       4 slots per particle, tangential springs yes, rolling springs no",
                                "decomposition: 3 rank(s), slab axis z", "scene hash:    0x0123456789abcdef",
                                "integrity:     complete, checksum matches"})
     EXPECT_NE(text.find(expected), std::string::npos) << "missing '" << expected << "' in\n" << text;
+}
+
+TEST(Checkpoint, DescribeFlagsADamagedCheckpoint) {
+  ScratchDir dir;
+  const std::string path = dir.file("checkpoint.h5");
+  write_checkpoint(path, sample_checkpoint());
+  edit_h5(path, [](hid_t f) { ASSERT_GE(H5Adelete(f, "complete"), 0); });
+  const H5Description d = describe_h5(path);
+  EXPECT_TRUE(d.damaged);
+  EXPECT_NE(d.text.find("integrity:     DAMAGED: "), std::string::npos) << d.text;
 }
 
 }  // namespace

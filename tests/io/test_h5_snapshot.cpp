@@ -124,12 +124,37 @@ TEST(Snapshot, DescribeSummarisesIt) {
   const std::string path = dir.file("s.h5");
   const ParticleSnapshot s = test::sample_particles(4);
   write_snapshot(path, s, default_snapshot_fields(), test::sample_walls(), sample_metadata(4));
-  const std::string text = describe_h5(path);
+  const std::string text = describe_h5(path).text;
   for (const char* expected : {"kind:          snapshot", "time:          0.125 s, step 250",
                                "particles:     4", "bounding box:  [0.1, -0.628571, 0.111111] to [1.1, -0.2, 0.114111]",
                                "walls:         2 (1 plane, 0 disk, 1 cylinder)", "scene hash:    0x", GS_VERSION,
                                "fields:        angular_velocity id marker material position radius velocity"})
     EXPECT_NE(text.find(expected), std::string::npos) << "missing '" << expected << "' in\n" << text;
+}
+
+// A particle_count of 2^33 over datasets of 4 rows: a FormatError naming the
+// attribute, the dataset and both sizes, not std::bad_alloc.
+TEST(Snapshot, ParticleCountThatDisagreesWithTheDatasetsIsRefused) {
+  ScratchDir dir;
+  const std::string path = dir.file("s.h5");
+  write_snapshot(path, test::sample_particles(4), default_snapshot_fields(), {}, SnapshotMetadata());
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const hid_t a = H5Aopen(f, "particle_count", H5P_DEFAULT);
+  const std::int64_t count = std::int64_t(1) << 33;
+  ASSERT_GE(H5Awrite(a, H5T_NATIVE_INT64, &count), 0);
+  H5Aclose(a);
+  H5Fclose(f);
+  for (auto read : {+[](const std::string& p) { read_snapshot(p); }, +[](const std::string& p) { describe_h5(p); }}) {
+    try {
+      read(path);
+      ADD_FAILURE() << "read a snapshot whose particle_count disagrees with its datasets";
+    } catch (const h5::FormatError& e) {
+      const std::string why = e.what();
+      for (const char* expected : {"particle_count", "8589934592", "/particles/position", "shape (4, 3)", "s.h5"})
+        EXPECT_NE(why.find(expected), std::string::npos) << "missing '" << expected << "' in: " << why;
+    }
+  }
 }
 
 TEST(Snapshot, DescribeRefusesOtherFiles) {
