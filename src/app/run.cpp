@@ -329,6 +329,7 @@ int command_run(const std::vector<std::string>& args, Transport& transport) {
   // Collective from here on: an error on one rank alone in the middle of an
   // exchange can only be reported by ending every rank (main.cpp).
   std::unique_ptr<Simulation> sim = start(scene, a, transport, split, restart, own_gpu);
+  restart.reset();  // the simulation holds the state now
   RankExchange* exchange = sim->exchange();
   std::unique_ptr<RunOutput> output;
   on_every_rank(transport, [&] {
