@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # A stop signal to a run on 2 ranks under a real mpiexec (CTest, CPU ranks):
 #  1. SIGTERM to mpiexec: Open MPI forwards it to the ranks after
-#     odls_base_sigkill_timeout (1 s by default) and kills them after as much
-#     again. Every rank must have written its part of a complete checkpoint by
-#     then: the stop flag is read every step, not after a chunk of up to 200
-#     steps (here 200 steps take several seconds). mpiexec itself exits 1 after
-#     a SIGTERM, whatever the ranks return (Open MPI's behaviour).
+#     odls_base_sigkill_timeout seconds (3 here; the jobscripts set 10) and
+#     kills them after as many again. The checkpoint must be complete by then:
+#     the stop flag is read every step, not after a chunk of up to 200 steps
+#     (here 200 steps take about 10 s). mpiexec itself exits 1 after a SIGTERM,
+#     whatever the ranks return (Open MPI's behaviour).
 #  2. SIGUSR1 to mpiexec, which forwards it at once: exit code 3.
 #  3. SIGTERM to jobscripts/forward_stop.sh around mpiexec: exit code 3.
 # Each checkpoint is complete (grainstorm info) and restarts.
@@ -50,7 +50,7 @@ expect_checkpoint() {
   echo "$out: stopped at step $step, checkpoint complete and restarts"
 }
 
-signal=TERM stop_run term "${mpi[@]}"
+signal=TERM stop_run term "${mpi[@]}" --mca odls_base_sigkill_timeout 3
 echo "SIGTERM to mpiexec: exit code $code"
 [[ $code != 0 ]] || fail "SIGTERM to mpiexec: exit code 0"
 expect_checkpoint term
