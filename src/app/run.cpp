@@ -355,6 +355,9 @@ int command_run(const std::vector<std::string>& args, Transport& transport) {
     out.log("run stopped by a fault: %s\n", fault.what());
     out.fault_snapshot(*sim);
     throw;
+  } catch (const RankFailure& failure) {  // an output rank 0 could not write
+    out.log("run stopped by an error: %s\n", failure.what());
+    throw;
   }
 }
 

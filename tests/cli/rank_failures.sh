@@ -85,3 +85,4 @@ blocked=$(ls first/particles_*.csv | sort | awk -F'[_.]' -v s=$step '$(NF-1) + 0
 rm -f "output/$(basename "$blocked")" && mkdir "output/$(basename "$blocked")"
 expect_stopped output "rank 0: " s.yaml --restart "$checkpoint" --out output :: s.yaml --restart "$checkpoint" --out output
 grep -qF "$(basename "$blocked")" output.err || fail "output: the message does not name the file: $(cat output.err)"
+grep -q "run stopped by an error: rank 0: .*$(basename "$blocked")" output/run.log || fail "output: not in run.log"
