@@ -65,7 +65,8 @@ void keep_rows_up_to(const fs::path& csv, int column, long long step) {
 void check_output_directory(const std::string& directory, OutputDirectoryUse use) {
   std::error_code e;
   if (use != OutputDirectoryUse::fresh || !fs::exists(directory, e)) return;
-  if (!fs::is_directory(directory, e)) throw std::runtime_error("--out " + directory + " exists and is not a directory");
+  if (!fs::is_directory(directory, e))
+    throw std::runtime_error("the output directory " + directory + " exists and is not a directory");
   fs::directory_iterator it(directory, e);
   if (e) throw std::runtime_error("cannot read the output directory " + directory + ": " + e.message());
   if (it == fs::directory_iterator()) return;
