@@ -38,9 +38,9 @@ if wants tests; then
   demo=cases/demo/settle.yaml
   g=build-gpu/src/grainstorm
   {
-    $g run $demo --backend cpu --out /tmp/demo_cpu 2>&1 | tail -3
-    $g run $demo --backend cuda --out /tmp/demo_gpu 2>&1 | tail -3
-    mpirun --allow-run-as-root --oversubscribe -np 2 $g run $demo --backend cuda --out /tmp/demo_gpu2 2>&1 | tail -3
+    $g run $demo --backend cpu --out /tmp/demo_cpu --overwrite 2>&1 | tail -3
+    $g run $demo --backend cuda --out /tmp/demo_gpu --overwrite 2>&1 | tail -3
+    mpirun --allow-run-as-root --oversubscribe -np 2 $g run $demo --backend cuda --out /tmp/demo_gpu2 --overwrite 2>&1 | tail -3
     python3 bench/compare_snapshots.py /tmp/demo_gpu /tmp/demo_gpu2 /tmp/demo_cpu
   } >> "$log" 2>&1
 fi
@@ -97,7 +97,7 @@ if wants mixprofile; then
   # Where a small mixer's step goes: phase split of case a at rest and of its cheap variant turning.
   for c in "case_a.yaml 30000" "case_a_ci.yaml 20000"; do
     set -- $c
-    (cd cases/mixer && "$root/build-gpu/src/grainstorm" run "$1" --backend cuda --steps "$2" --out "/tmp/prof_$1" 2>&1 |
+    (cd cases/mixer && "$root/build-gpu/src/grainstorm" run "$1" --backend cuda --steps "$2" --out "/tmp/prof_$1" --overwrite 2>&1 |
        grep -E "particles,|done|time per phase")
   done >> "$log" 2>&1
 fi

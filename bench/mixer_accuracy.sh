@@ -23,7 +23,7 @@ for r in "${runs[@]}"; do
   set -- $r
   scene=$(variant "$1" "$2")
   (cd "$root/cases/mixer" && "$root/$build/src/grainstorm" run "$scene" --backend "$backend" \
-     --out "$out/run_$1_$2" > "$out/run_$1_$2.log" 2>&1) || echo "run $1 $2 failed" >&2
+     --out "$out/run_$1_$2" --overwrite > "$out/run_$1_$2.log" 2>&1) || echo "run $1 $2 failed" >&2
   rm -f "$scene" "$out/run_$1_$2"/particles_*.h5 "$out/run_$1_$2"/meshes_*.h5 "$out/run_$1_$2"/checkpoint_*.h5
 done
 python3 - "$out" "$backend" "${runs[@]}" <<'PY'

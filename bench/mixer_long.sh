@@ -11,7 +11,8 @@ mkdir -p "$run"
 run=$(realpath "$run")
 last=$(ls "$run"/checkpoint_*.h5 2>/dev/null | sort | tail -1)
 args=(run "$(basename "$scene")" --backend "$backend" --out "$run")
-[[ -n $last ]] && args+=(--restart "$last")
+# The first piece replaces an earlier run's files (pieces.log stays).
+if [[ -n $last ]]; then args+=(--restart "$last"); else args+=(--overwrite); fi
 echo "=== piece from ${last:-the start}, at most $limit s" >> "$run/pieces.log"
 (cd "$(dirname "$scene")" && timeout --preserve-status -s TERM "$limit" "$gs" "${args[@]}" >> "$run/pieces.log" 2>&1)
 rc=$?

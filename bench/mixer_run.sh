@@ -9,7 +9,7 @@ root=$(pwd)
 mkdir -p "$out"
 run=$out/mixer_$case
 (cd cases/mixer && timeout -s TERM "$limit" "$root/$build/src/grainstorm" run "case_$case.yaml" --backend "$backend" \
-   --out "$run" > "$out/mixer_$case.log" 2>&1)
+   --out "$run" --overwrite > "$out/mixer_$case.log" 2>&1)
 echo "case $case: exit $? after at most $limit s"
 grep -E "particles,|marked|done|stopped|time per phase|peak" "$out/mixer_$case.log"
 tail -2 "$out/mixer_$case.log" | tr '\r' '\n' | tail -1

@@ -42,6 +42,6 @@ output: {interval: 0, directory: $out/run_${mode}_$n}
 decomposition: {method: slabs, axis: z}
 YAML
   mpirun --allow-run-as-root -np "$n" --bind-to none "$build/src/grainstorm" run "$out/bed_${mode}_$n.yaml" \
-    --backend cuda --steps "$steps" 2>&1 | grep -E "particles,|^done|time per phase|decomposition:|split|rror" |
+    --backend cuda --steps "$steps" --overwrite 2>&1 | grep -E "particles,|^done|time per phase|decomposition:|split|rror" |
     sed "s/^/[$mode $count, $n GPU] /"
 done

@@ -94,6 +94,17 @@ class MpiTransport final : public Transport {
     return value;
   }
 
+  void start_min(int value) override {
+    if (pending_ != MPI_REQUEST_NULL) throw std::logic_error("start_min: a reduction is already outstanding");
+    pending_value_ = value;
+    GS_MPI_CHECK(MPI_Iallreduce(&pending_value_, &pending_result_, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD, &pending_));
+  }
+  int finish_min() override {
+    if (pending_ == MPI_REQUEST_NULL) throw std::logic_error("finish_min: no reduction was started");
+    GS_MPI_CHECK(MPI_Wait(&pending_, MPI_STATUS_IGNORE));
+    return pending_result_;
+  }
+
   std::vector<Bytes> gather(Bytes local) override {
     std::vector<Bytes> all;
     if (rank_ != 0) {
@@ -134,6 +145,9 @@ class MpiTransport final : public Transport {
     requests.clear();
   }
   int rank_ = 0, size_ = 1, local_rank_ = 0;
+  // The outstanding start_min: its buffers must live until MPI_Wait.
+  MPI_Request pending_ = MPI_REQUEST_NULL;
+  int pending_value_ = 0, pending_result_ = 0;
 };
 
 }  // namespace

@@ -19,6 +19,8 @@ class SingleTransport final : public Transport {
   void sum(std::vector<std::int64_t>&) override {}
   void sum(std::vector<double>&) override {}
   int min(int value) override { return value; }
+  void start_min(int value) override { pending_ = value; }
+  int finish_min() override { return pending_; }
   std::vector<Bytes> gather(Bytes local) override {
     std::vector<Bytes> all;
     all.push_back(std::move(local));
@@ -26,6 +28,9 @@ class SingleTransport final : public Transport {
   }
   Bytes broadcast(const Bytes& data, int) override { return data; }
   [[noreturn]] void abort(int code) override { std::exit(code); }
+
+ private:
+  int pending_ = 0;
 };
 
 }  // namespace

@@ -27,6 +27,13 @@ class Transport {
   // is not bitwise independent of the rank count (use it for reported totals).
   virtual void sum(std::vector<double>& values) = 0;
   virtual int min(int value) = 0;                           // all-reduce
+  // Non-blocking all-reduce (minimum) of one value, for a flag read every
+  // step without waiting on the slowest rank: start_min posts it and returns
+  // at once, finish_min waits for it and returns the result. Collective: every
+  // rank starts and finishes the same reductions in the same order; at most one
+  // is outstanding.
+  virtual void start_min(int value) = 0;
+  virtual int finish_min() = 0;
   // Every rank's bytes in rank order on rank 0; empty elsewhere.
   virtual std::vector<Bytes> gather(Bytes local) = 0;
   virtual Bytes broadcast(const Bytes& data, int root) = 0;

@@ -7,4 +7,11 @@ shift
 gpus=$(nvidia-smi -L | wc -l)
 cores=$(nproc)
 export OMP_NUM_THREADS=$(( cores / gpus > 0 ? cores / gpus : 1 ))
-exec mpirun -np "$gpus" --bind-to none -x OMP_NUM_THREADS build/src/grainstorm run "$scene" --backend cuda "$@"
+# SIGTERM or SIGUSR1 to this script reaches every rank at once as SIGUSR1
+# (jobscripts/forward_stop.sh): a checkpoint, and exit code 3. A SIGTERM sent
+# to mpirun itself reaches the ranks only after odls_base_sigkill_timeout
+# seconds, with as many again before they are killed; 10 s leaves time for the
+# checkpoint (mpirun then exits with 1).
+export OMPI_MCA_odls_base_sigkill_timeout=${OMPI_MCA_odls_base_sigkill_timeout:-10}
+exec jobscripts/forward_stop.sh mpirun -np "$gpus" --bind-to none -x OMP_NUM_THREADS \
+  build/src/grainstorm run "$scene" --backend cuda "$@"

@@ -11,5 +11,5 @@ if command -v nvidia-smi >/dev/null && nvidia-smi -L >/dev/null 2>&1 && \
   backend=cuda
 fi
 "$root/build/src/grainstorm" check "$root/cases/demo/settle.yaml"
-"$root/build/src/grainstorm" run "$root/cases/demo/settle.yaml" --backend "$backend" --out "$root/build/demo_out"
+"$root/build/src/grainstorm" run "$root/cases/demo/settle.yaml" --backend "$backend" --out "$root/build/demo_out" --overwrite
 echo "quickstart: demo output in $root/build/demo_out"

@@ -7,10 +7,9 @@
 
 #include "app/commands.hpp"
 #include "backend/cpu/cpu_arch.hpp"
+#include "comm/rank_agreement.hpp"
 #include "comm/transport.hpp"
 #include "engine/simulation.hpp"
-#include "io/checkpoint.hpp"
-#include "scene/scene.hpp"
 
 namespace {
 
@@ -18,9 +17,13 @@ const char* kUsage =
     "grainstorm " GS_VERSION " - discrete element simulation of granular flows on GPUs and CPUs\n"
     "\n"
     "usage:\n"
-    "  grainstorm run SCENE [--backend cpu|cuda] [--steps N] [--out DIR] [--exchange auto|device|host]\n"
-    "                 [--restart CHECKPOINT.h5]\n"
+    "  grainstorm run SCENE [--backend cpu|cuda] [--steps N] [--out DIR] [--overwrite | --restart CHECKPOINT.h5]\n"
+    "                 [--exchange auto|device|host]\n"
     "      run a scene; by default on the GPU when one is present, for the scene's duration;\n"
+    "      into --out (default: the scene's output.directory), which must be new or empty unless\n"
+    "      --overwrite (first removes an earlier run's files from it) or --restart (continues the\n"
+    "      checkpoint's run from its step, in this or another directory) is given; SIGTERM or\n"
+    "      SIGUSR1 writes a checkpoint and exits with code 3 (under mpirun: docs/MULTI_RANK.md);\n"
     "      under mpirun/srun: one rank per GPU (or per CPU share with --backend cpu); GPU ranks\n"
     "      move particles over NCCL (device) when built with it, else through the host;\n"
     "      --restart continues from a checkpoint the same scene file wrote, on any number of ranks\n"
@@ -36,22 +39,21 @@ const char* kUsage =
     "\n"
     "The scene format is documented in docs/SCENES.md, output files in docs/OUTPUT.md.\n";
 
-// Errors every rank meets together (a bad scene, a fault all ranks agreed on)
-// are reported once, by rank 0. Any other error is one rank's alone: it is
-// reported with the rank and every rank is stopped, so none waits forever.
+// Errors the ranks have agreed on (a phase one rank failed, a fault, bad
+// input) are met by every rank together and reported once, by rank 0, and
+// every rank exits 1. Any other error is one rank's alone, met in the middle
+// of an exchange the others wait in: it is reported with the rank and every
+// rank is stopped, so none waits forever.
 int run_on_every_rank(const std::vector<std::string>& args) {
   std::unique_ptr<gs::Transport> transport;
   try {
     transport = gs::launched_by_mpi() ? gs::make_mpi_transport() : gs::make_single_transport();
     return gs::command_run(args, *transport);
-  } catch (const gs::SceneError& e) {
-    if (!transport || transport->rank() == 0) std::fprintf(stderr, "grainstorm: error: %s\n", e.what());
-    return 1;
-  } catch (const gs::CheckpointError& e) {
-    if (!transport || transport->rank() == 0) std::fprintf(stderr, "grainstorm: error: %s\n", e.what());
+  } catch (const gs::RankFailure& e) {
+    if (transport->rank() == 0) std::fprintf(stderr, "grainstorm: error: %s\n", e.what());
     return 1;
   } catch (const gs::SimulationFault& e) {
-    if (!transport || transport->rank() == 0) std::fprintf(stderr, "grainstorm: run stopped: %s\n", e.what());
+    if (transport->rank() == 0) std::fprintf(stderr, "grainstorm: run stopped: %s\n", e.what());
     return 1;
   } catch (const std::exception& e) {
     if (!transport || transport->size() == 1) {

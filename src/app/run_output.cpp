@@ -7,6 +7,7 @@
 
 #include "analysis/mixing.hpp"
 #include "analysis/wall_loads.hpp"
+#include "comm/rank_agreement.hpp"
 #include "comm/snapshot_gather.hpp"
 #include "io/h5_io.hpp"
 #include "io/h5_meshes.hpp"
@@ -16,6 +17,15 @@
 #include "io/text_file.hpp"
 
 namespace gs {
+namespace {
+
+std::string fault_snapshot_name(long long step) {
+  char name[64];
+  std::snprintf(name, sizeof(name), "fault_%010lld.h5", step);
+  return name;
+}
+
+}  // namespace
 
 RunOutput::RunOutput(const SceneSpec& scene, const std::string& directory, Transport& transport,
                      std::uint64_t scene_hash)
@@ -62,6 +72,22 @@ void RunOutput::log(const char* format, ...) {
   }
 }
 
+// Rank 0 writes; then every rank learns whether it could, so that a failed
+// write stops all of them at the same point instead of leaving the others in
+// the next step's exchange.
+template <class Write>
+void RunOutput::written_by_rank_0(Write&& write) {
+  std::string error;
+  if (transport_.rank() == 0) {
+    try {
+      write();
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  throw_if_any_failed(transport_, error);
+}
+
 void RunOutput::snapshot(const Simulation& sim) {
   std::vector<double> mesh_load;  // per mesh: fx fy fz tx ty tz, summed over ranks (collective)
   for (const MeshLoad& l : sim.mesh_loads())
@@ -71,7 +97,12 @@ void RunOutput::snapshot(const Simulation& sim) {
   const bool need_history = uses_history(scene_.effects);
   const ParticleRecords on_walls =
       need_history ? gather_history_records(transport_, sim.wall_contact_history()) : ParticleRecords();
-  if (transport_.rank() != 0) return;
+  written_by_rank_0([&] { write_snapshot_files(sim, s, on_walls, mesh_load); });
+}
+
+void RunOutput::write_snapshot_files(const Simulation& sim, const ParticleSnapshot& s, const ParticleRecords& on_walls,
+                                     const std::vector<double>& mesh_load) {
+  const bool need_history = uses_history(scene_.effects);
   const std::vector<std::uint16_t> contacts = need_history ? s.contacts : std::vector<std::uint16_t>(s.size(), 0);
   if (scene_.output.format == "csv") {
     write_particles_csv(directory_ + "/" + snapshot_file_name(s.step), s);
@@ -114,12 +145,17 @@ void RunOutput::snapshot(const Simulation& sim) {
 
 void RunOutput::mixing(const Simulation& sim) {
   const ParticleSnapshot s = gather_snapshot(transport_, sim.snapshot());
-  if (transport_.rank() != 0 || !mixing_log_) return;
-  mixing_log_->append(evaluate_mixing(*scene_.mixing, s));
+  written_by_rank_0([&] {
+    if (mixing_log_) mixing_log_->append(evaluate_mixing(*scene_.mixing, s));
+  });
 }
 
 void RunOutput::resume(long long step) {
-  if (transport_.rank() != 0 || scene_.output.format != "hdf5") return;
+  written_by_rank_0([&] { index_earlier_snapshots(step); });
+}
+
+void RunOutput::index_earlier_snapshots(long long step) {
+  if (scene_.output.format != "hdf5") return;
   std::vector<std::pair<long long, std::string>> files;
   for (const auto& entry : std::filesystem::directory_iterator(directory_)) {
     const std::string name = entry.path().filename().string();
@@ -151,15 +187,34 @@ void RunOutput::checkpoint(const Simulation& sim) {
   const ParticleSnapshot local = sim.snapshot();
   const ParticleSnapshot s = gather_snapshot(transport_, local);
   const HostHistory h = gather_history(transport_, local.id, sim.history());
-  if (transport_.rank() != 0) return;
   const std::string path = directory_ + "/" + checkpoint_h5_name(s.step);
-  write_checkpoint(path, make_checkpoint(s, h, sim.walls(), scene_hash_, transport_.size()));
-  checkpoints_.push_back(path);
-  while (checkpoints_.size() > 2) {
-    std::filesystem::remove(checkpoints_.front());
-    checkpoints_.erase(checkpoints_.begin());
-  }
+  written_by_rank_0([&] {
+    write_checkpoint(path, make_checkpoint(s, h, sim.walls(), scene_hash_, transport_.size()));
+    checkpoints_.push_back(path);
+    while (checkpoints_.size() > 2) {
+      std::filesystem::remove(checkpoints_.front());
+      checkpoints_.erase(checkpoints_.begin());
+    }
+  });
   log("checkpoint: %s\n", path.c_str());
+}
+
+void RunOutput::fault_snapshot(const Simulation& sim) {
+  const ParticleSnapshot s = gather_snapshot(transport_, sim.snapshot());
+  const std::string path = directory_ + "/" + fault_snapshot_name(s.step);
+  written_by_rank_0([&] {
+    SnapshotMetadata m;
+    m.scene_hash = scene_hash_;
+    m.scene_path = scene_.path;
+    m.wall_names = scene_.wall_names;
+    SnapshotFields fields = all_particle_fields();
+    if (uses_history(scene_.effects)) {
+      fields.add(SnapshotField::contact_count);
+      m.contact_count = s.contacts;
+    }
+    write_snapshot(path, s, fields, sim.walls(), m);
+  });
+  log("state at the fault written to %s (step %lld)\n", path.c_str(), s.step);
 }
 
 }  // namespace gs

@@ -1,7 +1,8 @@
 #pragma once
 // What a run writes beside itself: snapshots (HDF5 with an XDMF index, or
 // CSV), checkpoints, a time series of scalars and a log. Collective: every
-// rank calls each member; rank 0 writes.
+// rank calls each member; rank 0 writes, and a failure to write (a full disk)
+// stops every rank with the same RankFailure (comm/rank_agreement.hpp).
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -27,6 +28,9 @@ class RunOutput {
   void snapshot(const Simulation& sim);    // and a time-series row
   void checkpoint(const Simulation& sim);  // keeps the newest two
   void mixing(const Simulation& sim);      // one row of the mixing analysis (scene.mixing)
+  // After a fault: every particle field of the state the fault was found in,
+  // as fault_<step>.h5 (an HDF5 snapshot whatever the output format).
+  void fault_snapshot(const Simulation& sim);
   // After a restart at `step`: the XDMF indexes keep the snapshots written
   // before it (read back from the files in the output directory).
   void resume(long long step);
@@ -34,6 +38,13 @@ class RunOutput {
   void log(const char* format, ...) __attribute__((format(printf, 2, 3)));
 
  private:
+  template <class Write>
+  void written_by_rank_0(Write&& write);
+  void index_earlier_snapshots(long long step);  // rank 0's part of resume()
+  // Rank 0's part of snapshot(): the snapshot files and the time-series row.
+  void write_snapshot_files(const Simulation& sim, const ParticleSnapshot& s, const ParticleRecords& on_walls,
+                            const std::vector<double>& mesh_load);
+
   const SceneSpec& scene_;
   std::string directory_;
   Transport& transport_;

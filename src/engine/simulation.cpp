@@ -48,7 +48,6 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
   // Forces at t = 0 for the first half kick.
   rebuild_neighbours();
   kernels_->compute_forces(store_, 0.0, 0);
-  check_fault();
 }
 
 Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::shared_ptr<RankExchange> exchange,
@@ -58,7 +57,6 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
   restore(restart);
   if (exchange_) exchange_->refresh_ghosts(store_, *kernels_);
   rebuild_neighbours();
-  check_fault();
 }
 
 void Simulation::set_up(const SceneSpec& scene) {
@@ -218,7 +216,7 @@ std::vector<MeshLoad> Simulation::mesh_loads() const {
 
 void Simulation::rebuild_neighbours() { kernels_->build_neighbours(store_, grid_, skin_); }
 
-void Simulation::run(long long steps) {
+void Simulation::run(long long steps, const std::function<bool()>& stop_after_step) {
   const auto start = Clock::now();
   const double dt = scene_.time_step;
   IntegrationParams p{dt, scene_.gravity, scene_.domain_min, scene_.domain_max, 0.5 * grid_.cell_size, 0,
@@ -266,6 +264,7 @@ void Simulation::run(long long steps) {
     ++step_;
     time_ = double(step_) * dt;
     if (options_.fault_check_interval > 0 && step_ % options_.fault_check_interval == 0) check_fault();
+    if (stop_after_step && stop_after_step()) break;
   }
   check_fault();
   run_seconds_ += seconds_since(start);

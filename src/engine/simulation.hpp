@@ -2,6 +2,7 @@
 // One rank's simulation: the particle store, the compiled step kernels for the
 // scene's effects, walls and the time loop (velocity Verlet).
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -54,10 +55,19 @@ class Simulation {
   // particles it owns and trades the others with its neighbours every step.
   Simulation(const SceneSpec& scene, const RunOptions& options, std::shared_ptr<RankExchange> exchange = nullptr);
   // Continues from `restart` instead of the scene's initial particles.
+  // Neither constructor throws on a fault in the first forces (too many
+  // contacts): it is thrown by check_fault() or the first run(), once the
+  // caller can save the state it was found in.
   Simulation(const SceneSpec& scene, const RunOptions& options, std::shared_ptr<RankExchange> exchange,
              const RestartState& restart);
 
-  void run(long long steps);  // advances `steps` time steps
+  // Advances `steps` time steps, or fewer: `stop_after_step`, when given, is
+  // called after every step and ends the run early by returning true (with
+  // several ranks every rank calls it at every step, so it may communicate).
+  void run(long long steps, const std::function<bool()>& stop_after_step = {});
+  // Throws SimulationFault when a kernel has reported a fault since the last
+  // check. Collective with several ranks (the fault of the lowest failing rank).
+  void check_fault();
   // Sets every owned particle's marker by its side of the plane, now.
   void mark(const MarkingSpec& m) { kernels_->mark_by_plane(store_, m); }
   double time() const { return time_; }
@@ -92,7 +102,6 @@ class Simulation {
   void pose_meshes(double t);
   void rebuild_neighbours();
   void step_particles_between_ranks();
-  void check_fault();
   double phase_seconds(std::chrono::steady_clock::time_point start) const;
   static constexpr long long kTimedEvery = 16;  // steps between timed ones
 

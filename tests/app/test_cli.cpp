@@ -154,6 +154,8 @@ TEST_F(CliTest, VersionAndHelp) {
   const CliResult h = run_cli("--help");
   EXPECT_EQ(h.exit_code, 0);
   EXPECT_NE(h.out.find("usage:"), std::string::npos);
+  for (const char* option : {"--overwrite", "--restart", "--out", "--steps"})
+    EXPECT_NE(h.out.find(option), std::string::npos) << option;
   EXPECT_TRUE(work_entries().empty());
 }
 

@@ -1,0 +1,21 @@
+#!/bin/bash
+# Runs an mpirun/mpiexec command line and turns SIGTERM (and SIGUSR1) to this
+# script into SIGUSR1 to mpirun. Open MPI's mpirun forwards SIGUSR1 to every
+# rank at once, and grainstorm then writes a checkpoint and exits with code 3,
+# which mpirun returns. A SIGTERM to mpirun itself instead makes it forward
+# SIGTERM only after odls_base_sigkill_timeout seconds (default 1), kill the
+# ranks after as many again, and exit with 1 whatever the ranks return.
+#   jobscripts/forward_stop.sh mpirun -np 4 build/src/grainstorm run scene.yaml
+# Exits with the command's own code.
+set -uo pipefail
+"$@" &
+pid=$!
+trap 'kill -USR1 $pid 2>/dev/null' TERM USR1 INT
+# `wait` returns early (with 128 + signal) when a trapped signal arrives:
+# wait again until the command itself has ended.
+while true; do
+  wait $pid
+  code=$?
+  kill -0 $pid 2>/dev/null || break
+done
+exit $code
