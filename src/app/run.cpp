@@ -132,6 +132,7 @@ std::unique_ptr<Simulation> start(const SceneSpec& scene, const RunArgs& a, Tran
 int command_run(const std::vector<std::string>& args, Transport& transport) {
   const RunArgs a = parse_run_args(args);
   const SceneSpec scene = load_scene(a.scene);
+  if (transport.rank() == 0) print_warnings(scene);
   const std::uint64_t hash = scene_hash(file_text(a.scene));
   const long long total = a.steps >= 0 ? a.steps : std::llround(scene.duration / scene.time_step);
   const bool own_gpu = a.backend == Backend::cuda && select_cuda_device(transport.local_rank());
