@@ -18,9 +18,14 @@ std::string human_bytes(double b) {
   return s;
 }
 
+void print_warnings(const SceneSpec& scene) {
+  for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+}
+
 int command_check(const std::vector<std::string>& args) {
   if (args.size() != 2) throw std::invalid_argument("usage: grainstorm check SCENE");
   const SceneSpec scene = load_scene(args[1]);
+  print_warnings(scene);
   const MemoryEstimate m = estimate_memory(scene);
   std::printf("scene %s is valid\n", args[1].c_str());
   std::printf("particles:      %zu\n", scene.particles.size());
@@ -33,6 +38,9 @@ int command_check(const std::vector<std::string>& args) {
   std::printf("memory:         %s (%.0f bytes per particle, %s for %lld cells)\n",
               human_bytes(m.total_bytes).c_str(), m.bytes_per_particle, human_bytes(m.cell_bytes).c_str(),
               m.cells);
+  if (scene.meshes.n_meshes() > 0)
+    std::printf("meshes:         %d triangles, %s with their binning (%.3g cells, up to %.3g entries)\n",
+                int(scene.meshes.n_triangles()), human_bytes(m.mesh_bytes).c_str(), m.mesh_cells, m.mesh_entries);
   return 0;
 }
 

@@ -2,6 +2,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/scene.hpp"
+
 namespace gs {
 
 // Each returns the process exit code; bad input throws with a clear message.
@@ -12,5 +14,7 @@ int command_info(const std::vector<std::string>& args);    // app/command_info.c
 int command_mixing(const std::vector<std::string>& args);  // app/command_mixing.cpp
 
 std::string human_bytes(double bytes);  // "1.5 MiB"
+// The scene's warnings (SceneSpec::warnings), one "warning: ..." line each on stderr.
+void print_warnings(const SceneSpec& scene);
 
 }  // namespace gs

@@ -304,6 +304,7 @@ int command_run(const std::vector<std::string>& args, Transport& transport) {
   const RunArgs& a = *parsed;
   const SceneSpec& scene = *loaded;
   expect_same_run_everywhere(transport, a, hash);
+  if (transport.rank() == 0) print_warnings(scene);
   const std::string directory = a.out.empty() ? scene.output.directory : a.out;
   // Only rank 0 writes, so only its view of the directory counts.
   on_every_rank(transport, [&] {

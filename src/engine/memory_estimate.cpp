@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "neighbor/cell_grid.hpp"
+#include "walls/mesh.hpp"
 
 namespace gs {
 
@@ -29,7 +30,16 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
     m.cells = g.cell_count();
     m.cell_bytes = 2.0 * 4 * double(m.cells);
   }
-  m.total_bytes = per * double(scene.particles.size()) + m.cell_bytes;
+  const MeshSet& meshes = scene.meshes;
+  if (r > 0 && meshes.n_meshes() > 0) {
+    const MeshBinningSize bins = binning_size(meshes, 2 * r, run_binning(2 * r));
+    m.mesh_cells = bins.total_cells();
+    m.mesh_entries = bins.total_entries();
+    // Per vertex the reference and current pose; per triangle corners, edges,
+    // ownership and mesh id; per edge its ends.
+    m.mesh_bytes = bins.bytes() + 48.0 * meshes.n_vertices() + 29.0 * meshes.n_triangles() + 8.0 * meshes.n_edges;
+  }
+  m.total_bytes = per * double(scene.particles.size()) + m.cell_bytes + m.mesh_bytes;
   return m;
 }
 

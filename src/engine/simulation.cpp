@@ -89,10 +89,8 @@ void Simulation::set_up(const SceneSpec& scene) {
     for (const MeshMotion& m : meshes_.motion)
       meshes_move_ = meshes_move_ || norm2(m.velocity) > 0 || norm2(m.angular_velocity) > 0;
     kernels_->set_meshes(meshes_);
-    // Bins in each mesh's own frame: binned once, whatever the motion. Reach
-    // half a cell (>= the largest radius), with room for the rounding of a
-    // position carried into the mesh's frame.
-    kernels_->set_mesh_bins(bin_triangles(meshes_, grid_.cell_size, {0.5 * grid_.cell_size * (1 + 1e-9)}));
+    // Bins in each mesh's own frame: binned once, whatever the motion.
+    kernels_->set_mesh_bins(bin_triangles(meshes_, grid_.cell_size, run_binning(grid_.cell_size)));
   }
 }
 

@@ -43,7 +43,17 @@ struct CellGrid {
   }
 };
 
-// Grid over the box [lo, hi] with cells of edge >= min_cell_size.
+// Most cells a grid may have: its tables take 8 bytes a cell, and cell
+// indices must stay far inside the int range of the kernels.
+constexpr double kMaxGridCells = 2.0e9;
+
+// Cells of the grid over [lo, hi] with cells of edge `cell_size`, counted in
+// double so that a huge box gives a huge count instead of an overflow
+// (infinite when the extent is).
+double grid_cells(const Vec3d& lo, const Vec3d& hi, double cell_size);
+
+// Grid over the box [lo, hi] with cells of edge >= min_cell_size. Throws when
+// it would need more than kMaxGridCells cells.
 CellGrid make_cell_grid(const Vec3d& lo, const Vec3d& hi, double min_cell_size);
 
 }  // namespace gs

@@ -137,22 +137,46 @@ double region_volume(const FillRegion& reg) {
   return d.x * d.y * d.z;
 }
 
-std::size_t lattice_sites(double lo, double hi, double spacing) {
+namespace {
+
+// Sites along one axis in double: a huge extent gives a huge count here,
+// where converting first would overflow (1e20 m gave one site).
+double axis_sites(double lo, double hi, double spacing) {
   if (hi < lo) return 0;
   // The small slack keeps a site that sits exactly on `hi` despite rounding.
-  return std::size_t(std::floor((hi - lo) / spacing + 1e-9)) + 1;
+  return std::floor((hi - lo) / spacing + 1e-9) + 1;
+}
+
+// More sites than particle ids: refused before any count is converted.
+void check_site_count(double sites) {
+  if (!(sites <= double(kMaxParticleId) + 1)) {
+    std::ostringstream msg;
+    msg << "the lattice would have " << sites << " sites, more than the " << double(kMaxParticleId) + 1
+        << " particle ids: check min, max and spacing";
+    throw GenerateError(msg.str());
+  }
+}
+
+}  // namespace
+
+std::size_t lattice_sites(double lo, double hi, double spacing) {
+  const double n = axis_sites(lo, hi, spacing);
+  check_site_count(n);
+  return std::size_t(n);
 }
 
 std::size_t lattice_count(const LatticeSpec& s) {
-  return lattice_sites(s.min.x, s.max.x, s.spacing) * lattice_sites(s.min.y, s.max.y, s.spacing) *
-         lattice_sites(s.min.z, s.max.z, s.spacing);
+  const double n = axis_sites(s.min.x, s.max.x, s.spacing) * axis_sites(s.min.y, s.max.y, s.spacing) *
+                   axis_sites(s.min.z, s.max.z, s.spacing);
+  check_site_count(n);
+  return std::size_t(n);
 }
 
 void generate_lattice(const LatticeSpec& s, std::vector<ParticleInit>& out) {
   const std::size_t nx = lattice_sites(s.min.x, s.max.x, s.spacing);
   const std::size_t ny = lattice_sites(s.min.y, s.max.y, s.spacing);
   const std::size_t nz = lattice_sites(s.min.z, s.max.z, s.spacing);
-  check_id_room(out.size(), nx * ny * nz);
+  check_id_room(out.size(), lattice_count(s));  // refuses before nx * ny * nz could overflow
   out.reserve(out.size() + nx * ny * nz);
   for (std::size_t k = 0; k < nz; ++k)
     for (std::size_t j = 0; j < ny; ++j)

@@ -30,7 +30,8 @@ struct LatticeSpec {
   double spacing = 0;
 };
 
-// Number of lattice sites along one axis of [lo, hi] (0 when hi < lo).
+// Number of lattice sites along one axis of [lo, hi] (0 when hi < lo), and
+// in all; GenerateError when more than the particle ids.
 std::size_t lattice_sites(double lo, double hi, double spacing);
 std::size_t lattice_count(const LatticeSpec& spec);
 

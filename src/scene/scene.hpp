@@ -95,6 +95,9 @@ struct SceneSpec {
   DecompositionSpec decomposition;
   std::optional<MixingSpec> mixing;  // analysis.mixing (docs/MIXING.md); none: no mixing analysis
   std::optional<MarkingSpec> marking;  // none: markers stay as created
+  // "<file>:<line>: <key path>: <what>" for each value the scene sets that the
+  // run ignores (a parameter of an effect that is off); check and run print them.
+  std::vector<std::string> warnings;
 };
 
 }  // namespace gs

@@ -1,4 +1,5 @@
 // `analysis:` -> SceneSpec::mixing (docs/SCENES.md, docs/MIXING.md).
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,20 @@ void check_inside_domain(const Map& m, const SampleSpec& smp, const SceneSpec& s
                        " to " + str(smp.bottom + smp.height) + ") reach outside the domain");
 }
 
+// The run opens the mixing log after it has created its output directory, and
+// creates no other: a log whose directory is missing is refused here, before
+// anything is written.
+void check_log_path(const Val& v, const std::string& output) {
+  const std::filesystem::path p(output);
+  if (!p.has_filename() || (p.is_absolute() && std::filesystem::is_directory(p)))
+    fail(v, quoted(output) + " names a directory; give a file name");
+  if (p.is_relative() && p.has_parent_path())
+    fail(v, "a relative path lies in the run's output directory, which holds files only: give a file name, or an "
+            "absolute path to write elsewhere");
+  if (p.is_absolute() && !std::filesystem::is_directory(p.parent_path()))
+    fail(v, "the directory " + quoted(p.parent_path().string()) + " does not exist");
+}
+
 MixingSpec parse_mixing(const Map& m, const SceneSpec& s) {
   MixingSpec spec;
   SampleSpec& smp = spec.samples;
@@ -109,7 +124,10 @@ MixingSpec parse_mixing(const Map& m, const SceneSpec& s) {
   spec.start = number_or(m, "start", 0.0, nonnegative);
   if (!(spec.start <= s.duration))
     fail(m.get("start"), "must not exceed the duration " + str(s.duration) + " s, got " + str(spec.start));
-  if (m.has("output")) spec.output = text(m.get("output"));
+  if (m.has("output")) {
+    spec.output = text(m.get("output"));
+    check_log_path(m.get("output"), spec.output);
+  }
   return spec;
 }
 

@@ -7,6 +7,7 @@
 
 #include "contact/contact_time.hpp"
 #include "io/snapshot_fields.hpp"
+#include "neighbor/cell_grid.hpp"
 #include "scene/generators.hpp"
 #include "scene/position_resolution.hpp"
 #include "scene/scene_sections.hpp"
@@ -65,11 +66,16 @@ void parse_globals(const Map& top, SceneSpec& s) {
     if (o.has("fields")) {
       const Val list = o.get("fields");
       for_each_item(list, [&](const Val& item, std::size_t) { s.output.fields.push_back(text(item)); });
+      SnapshotFields fields;
       try {
-        parse_snapshot_fields(s.output.fields);
+        fields = parse_snapshot_fields(s.output.fields);
       } catch (const std::invalid_argument& e) {
-        fail(list, e.what());
+        fail(list, cut(e.what(), 4 * kEchoLength));
       }
+      // Contacts are counted in the contact history, which only these effects keep.
+      if (fields.has(SnapshotField::contact_count) && !uses_history(s.effects))
+        fail(list, "contact_count needs friction or rolling resistance (contact history); set effects.friction or "
+                   "effects.rolling_resistance, or leave the field out");
     }
     s.output.checkpoint_interval = number_or(o, "checkpoint_interval", 0.0, nonnegative);
     s.output.checkpoint_minutes = number_or(o, "checkpoint_minutes", 0.0, nonnegative);
@@ -86,7 +92,7 @@ void parse_materials(const Map& top, SceneSpec& s) {
     MaterialSpec mat;
     mat.name = text(m.get("name"));
     for (const auto& other : s.materials)
-      if (other.name == mat.name) fail(m.get("name"), "material '" + mat.name + "' is defined twice");
+      if (other.name == mat.name) fail(m.get("name"), "material " + quoted(mat.name) + " is defined twice");
     mat.density = positive(m.get("density"));
     // Elastic constants matter to Hertz-Mindlin only; elsewhere they are optional but still checked.
     mat.youngs_modulus = hertz ? positive(m.get("youngs_modulus")) : number_or(m, "youngs_modulus", 0.0, positive);
@@ -132,6 +138,30 @@ PairSpec parse_pair(const SceneSpec& s, const Map& m) {
   return p;
 }
 
+// A pair's parameters of an effect that is off are read and checked, then
+// ignored by the run: say so. A friction, rolling friction or cohesion of 0
+// agrees with the effect being off; a stiffness is always a choice.
+void warn_unused_parameters(const Map& m, SceneSpec& s) {
+  struct Use {
+    const char* key;
+    Effect effect;
+    const char* effect_key;
+    bool zero_agrees;
+  };
+  const Use uses[] = {{"friction", kFriction, "friction", true},
+                      {"stiffness_tangential", kFriction, "friction", false},
+                      {"rolling_friction", kRollingResistance, "rolling_resistance", true},
+                      {"stiffness_rolling", kRollingResistance, "rolling_resistance", false},
+                      {"cohesion_energy_density", kCohesion, "cohesion", true}};
+  for (const Use& u : uses) {
+    if (!m.has(u.key) || (s.effects & u.effect)) continue;
+    const Val v = m.get(u.key);
+    if (u.zero_agrees && number(v) == 0) continue;
+    s.warnings.push_back(located(v, std::string("ignored: the effect ") + u.effect_key + " is off (set effects: {" +
+                                        u.effect_key + ": true} to use it)"));
+  }
+}
+
 bool has_pair(const SceneSpec& s, int a, int b) {
   for (const auto& p : s.pairs)
     if (p.material_a == std::min(a, b) && p.material_b == std::max(a, b)) return true;
@@ -159,11 +189,32 @@ void parse_pairs(const Map& top, SceneSpec& s) {
   const Val list = top.opt("pairs");
   if (list.present())
     for_each_item(list, [&](const Val& item, std::size_t) {
-      s.pairs.push_back(parse_pair(
-          s, Map(item, {"materials", "stiffness_normal", "stiffness_tangential", "stiffness_rolling", "restitution",
-                        "friction", "rolling_friction", "cohesion_energy_density"})));
+      const Map m(item, {"materials", "stiffness_normal", "stiffness_tangential", "stiffness_rolling", "restitution",
+                         "friction", "rolling_friction", "cohesion_energy_density"});
+      s.pairs.push_back(parse_pair(s, m));
+      warn_unused_parameters(m, s);
     });
   require_pairs(s, list);
+}
+
+double largest_diameter(const SceneSpec& s) {
+  double r = 0;
+  for (const auto& p : s.particles) r = std::max(r, p.radius);
+  return 2 * r;
+}
+
+// The run's contact search lays cells of at least the largest diameter over
+// the domain (walls/mesh.hpp bins meshes in the same cells); refused here
+// what its grid would refuse, so that check refuses it too.
+void check_search_grid(const Map& top, const SceneSpec& s) {
+  const double cell = largest_diameter(s);
+  const double cells = grid_cells(s.domain_min, s.domain_max, cell);
+  if (!(cells <= kMaxGridCells))
+    fail(top.get("domain"), "the contact search needs cells of at least " + str(cell) +
+                                " m (the largest particle diameter): over the domain's extent " +
+                                str(s.domain_max - s.domain_min) + " m that is " + str(cells) + " cells, more than " +
+                                str(kMaxGridCells) + "; shrink the domain to where the particles can go");
+  check_mesh_binning(top, s, cell);
 }
 
 void resolve_time_step(const Map& top, SceneSpec& s) {
@@ -182,12 +233,7 @@ void resolve_time_step(const Map& top, SceneSpec& s) {
 }  // namespace
 
 SceneSpec parse_scene(const std::string& yaml_text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw SceneError(source + ":" + std::to_string(std::max(1, e.mark.line + 1)) + ": yaml syntax: " + e.msg);
-  }
+  const YAML::Node root = load_document(yaml_text, source);
   SceneSpec s;
   s.path = source;
   const Map top(Val{root, "", 1, &source}, kTopKeys);
@@ -196,6 +242,7 @@ SceneSpec parse_scene(const std::string& yaml_text, const std::string& source) {
   parse_walls(top, s);
   parse_particles(top, s);
   parse_pairs(top, s);
+  check_search_grid(top, s);
   resolve_time_step(top, s);
   if (const std::string problem = fp32_state_problem(s); !problem.empty()) fail(top.get("precision"), problem);
   parse_analysis(top, s);

@@ -49,7 +49,9 @@ void add_lattice(SceneSpec& s, const Val& v) {
   if (spec.spacing < 2 * spec.radius)
     fail(m.opt("spacing"), "spacing " + str(spec.spacing) + " is below the particle diameter " +
                                str(2 * spec.radius) + ": neighbours would overlap");
-  if (lattice_count(spec) == 0) fail(v, "no lattice site lies in [min, max]: min exceeds max on some axis");
+  std::size_t sites = 0;
+  generate(v, [&] { sites = lattice_count(spec); });
+  if (sites == 0) fail(v, "no lattice site lies in [min, max]: min exceeds max on some axis");
   generate(v, [&] { generate_lattice(spec, s.particles); });
 }
 
@@ -155,7 +157,7 @@ void check_fit(const SceneSpec& s, const ParticleInit& p, const Val& where) {
   for (std::size_t w = 0; w < s.walls.size(); ++w) {
     const double depth = wall_penetration(s.walls[w], c, p.radius);
     if (depth > slack)
-      fail(where, describe(p) + " cuts " + str(depth) + " m into wall '" + s.wall_names[w] + "' at t = 0");
+      fail(where, describe(p) + " cuts " + str(depth) + " m into wall " + quoted(s.wall_names[w]) + " at t = 0");
   }
 }
 

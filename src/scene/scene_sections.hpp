@@ -10,6 +10,11 @@ int material_index(const SceneSpec& s, const Val& v);
 // `walls:` -> s.walls and s.wall_names (needs s.materials).
 void parse_walls(const Map& top, SceneSpec& s);
 
+// Refuses a mesh whose binning in cells of `cell_size` would exceed the
+// limits of bin_triangles (walls/mesh.hpp), naming the mesh and its size
+// against the domain (needs s.meshes and the walls section).
+void check_mesh_binning(const Map& top, const SceneSpec& s, double cell_size);
+
 // `particles:` -> s.particles, then checks them against the domain, the walls
 // and each other (needs s.materials, s.walls and the domain).
 void parse_particles(const Map& top, SceneSpec& s);

@@ -32,6 +32,8 @@ namespace scene_yaml {
 
 namespace {
 
+const std::vector<std::string> kWallKeys = {"plane", "box", "cylinder", "mesh", "name", "material", "motion"};
+
 // Prescribed motion, shared by every wall that one entry expands to.
 void parse_motion(const Val& v, Wall& w) {
   const Map m(v, {"velocity", "rotation", "start"});
@@ -46,9 +48,9 @@ void parse_motion(const Val& v, Wall& w) {
 
 void check_new_name(const SceneSpec& s, const std::string& name, const Val& where) {
   for (const auto& other : s.wall_names)
-    if (other == name) fail(where, "wall name '" + name + "' is used twice");
+    if (other == name) fail(where, "wall name " + quoted(name) + " is used twice");
   for (const auto& other : s.meshes.names)
-    if (other == name) fail(where, "wall name '" + name + "' is used twice");
+    if (other == name) fail(where, "wall name " + quoted(name) + " is used twice");
 }
 
 void add_wall(SceneSpec& s, const Wall& w, const std::string& name, const Val& where) {
@@ -128,14 +130,14 @@ void add_mesh_wall(SceneSpec& s, const Wall& proto, const Val& v, const std::str
   try {
     mesh = read_stl(path.string(), options);
   } catch (const std::exception& e) {
-    fail(file, e.what());
+    fail(file, cut(e.what(), 4 * kEchoLength));
   }
   mesh.name = name;
   const MeshMotion motion{proto.velocity, proto.angular_velocity, proto.axis_point, proto.motion_start};
   try {
     add_mesh(s.meshes, mesh, proto.material, motion, crease);
   } catch (const std::exception& e) {
-    fail(v, e.what());
+    fail(v, cut(e.what(), 4 * kEchoLength));
   }
   if (s.meshes.n_triangles() >= kMaxMeshFeatures || s.meshes.n_vertices() >= kMaxMeshFeatures ||
       s.meshes.n_edges >= kMaxMeshFeatures)
@@ -151,7 +153,35 @@ int material_index(const SceneSpec& s, const Val& v) {
     if (s.materials[m].name == name) return int(m);
     known.push_back(s.materials[m].name);
   }
-  fail(v, "unknown material '" + name + "'; defined materials: " + join(known));
+  fail(v, "unknown material " + quoted(name) + "; defined materials: " + join(known));
+}
+
+void check_mesh_binning(const Map& top, const SceneSpec& s, double cell_size) {
+  if (s.meshes.n_meshes() == 0) return;
+  const MeshBinningSize size = binning_size(s.meshes, cell_size, run_binning(cell_size));
+  const Vec3d domain = s.domain_max - s.domain_min;
+  // Mesh m came from the m-th `mesh` entry of the walls list.
+  std::int32_t m = 0;
+  for_each_item(top.get("walls"), [&](const Val& item, std::size_t) {
+    const Map wall(item, kWallKeys);
+    if (!wall.has("mesh")) return;
+    Vec3d lo, hi;
+    mesh_reference_bounds(s.meshes, m, lo, hi);
+    if (!(size.cells[m] <= kMaxGridCells && size.entries[m] <= kMaxBinEntries))
+      fail(wall.get("mesh"), "mesh " + quoted(s.meshes.names[m]) + " spans " + str(hi - lo) +
+                                 " m against a domain of " + str(domain) + " m: binning it in cells of " +
+                                 str(cell_size) + " m (the largest particle diameter) needs " + str(size.cells[m]) +
+                                 " cells (at most " + str(kMaxGridCells) + ") and up to " + str(size.entries[m]) +
+                                 " triangle entries (at most 2^31 - 1), about " +
+                                 str(4 * (size.cells[m] + size.entries[m]) / 1073741824.0) +
+                                 " GiB; is the STL in millimetres? `scale: 0.001` reads it in metres");
+    ++m;
+  });
+  if (!(size.total_cells() <= kMaxGridCells && size.total_entries() <= kMaxBinEntries))
+    fail(top.get("walls"), "the meshes together need " + str(size.total_cells()) + " cells (at most " +
+                               str(kMaxGridCells) + ") and up to " + str(size.total_entries()) +
+                               " triangle entries (at most 2^31 - 1) in cells of " +
+                               str(cell_size) + " m (the largest particle diameter); use coarser meshes");
 }
 
 void parse_walls(const Map& top, SceneSpec& s) {
@@ -159,7 +189,7 @@ void parse_walls(const Map& top, SceneSpec& s) {
   if (!list.present()) return;
   std::map<std::string, int> unnamed;  // per kind, for default names box, box2, ...
   for_each_item(list, [&](const Val& item, std::size_t) {
-    const Map m(item, {"plane", "box", "cylinder", "mesh", "name", "material", "motion"});
+    const Map m(item, kWallKeys);
     const std::string kind = m.one_of({"plane", "box", "cylinder", "mesh"});
     Wall proto;
     proto.material = material_index(s, m.get("material"));

@@ -5,15 +5,23 @@
 
 namespace gs::scene_yaml {
 
-void fail(const Val& v, const std::string& what) {
-  throw SceneError(*v.source + ":" + std::to_string(v.line) + ": " + (v.path.empty() ? "scene" : v.path) + ": " +
-                   what);
+std::string located(const Val& v, const std::string& what) {
+  return *v.source + ":" + std::to_string(v.line) + ": " + (v.path.empty() ? "scene" : cut(v.path, 2 * kEchoLength)) + ": " + what;
 }
+
+void fail(const Val& v, const std::string& what) { throw SceneError(located(v, what)); }
 
 std::string str(const Vec3d& v) { return "[" + str(v.x) + ", " + str(v.y) + ", " + str(v.z) + "]"; }
 
+std::string cut(const std::string& s, std::size_t keep) {
+  if (s.size() <= keep + 24) return s;  // cutting would save less than the note costs
+  return s.substr(0, keep) + "... (" + std::to_string(s.size()) + " characters)";
+}
+
+std::string quoted(const std::string& s) { return "'" + cut(s) + "'"; }
+
 std::string describe(const YAML::Node& n) {
-  if (n.IsScalar()) return "'" + n.Scalar() + "'";
+  if (n.IsScalar()) return quoted(n.Scalar());
   if (n.IsSequence()) return "a list";
   if (n.IsMap()) return "a map";
   return "nothing";
@@ -30,6 +38,45 @@ int line_of(const YAML::Node& n, int fallback) {
   return m.is_null() ? fallback : m.line + 1;
 }
 
+// ---- documents and tags ------------------------------------------------------
+
+namespace {
+
+// "?" marks a plain scalar or an untagged collection, "!" a quoted scalar:
+// both non-specific. Anything else (!custom, !!str) is a tag the loader
+// would otherwise ignore without a word.
+void refuse_tags(const YAML::Node& n, const std::string& source, int fallback_line) {
+  const int line = line_of(n, fallback_line);
+  const std::string& tag = n.Tag();
+  if (!tag.empty() && tag != "?" && tag != "!")
+    throw SceneError(source + ":" + std::to_string(line) + ": yaml: the tag " + quoted(tag) +
+                     " is not supported; scenes use plain YAML values without tags");
+  if (n.IsSequence())
+    for (const YAML::Node& item : n) refuse_tags(item, source, line);
+  if (n.IsMap())
+    for (auto it = n.begin(); it != n.end(); ++it) {
+      refuse_tags(it->first, source, line);
+      refuse_tags(it->second, source, line_of(it->first, line));
+    }
+}
+
+}  // namespace
+
+YAML::Node load_document(const std::string& yaml_text, const std::string& source) {
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw SceneError(source + ":" + std::to_string(std::max(1, e.mark.line + 1)) + ": yaml syntax: " + cut(e.msg));
+  }
+  if (documents.empty()) return YAML::Node();  // an empty file: the caller reports the missing keys
+  if (documents.size() > 1)
+    throw SceneError(source + ":" + std::to_string(line_of(documents[1], 1)) + ": yaml: a second document (after " +
+                     "'---') is not allowed; a scene file holds one document");
+  refuse_tags(documents[0], source, 1);
+  return documents[0];
+}
+
 // ---- Map -------------------------------------------------------------------
 
 Map::Map(const Val& v, const std::vector<std::string>& allowed) : self_(v) {
@@ -40,9 +87,9 @@ Map::Map(const Val& v, const std::vector<std::string>& allowed) : self_(v) {
     const std::string key = it->first.Scalar();
     const Val field{it->second, v.path.empty() ? key : v.path + "." + key, line, v.source};
     if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
-      fail(field, "unknown key '" + key + "'; allowed here: " + join(allowed));
+      fail(field, "unknown key " + quoted(key) + "; allowed here: " + join(allowed));
     // yaml-cpp keeps repeated keys silently; a repeat is almost always a slip.
-    if (has(key)) fail(field, "key '" + key + "' is given twice");
+    if (has(key)) fail(field, "key " + quoted(key) + " is given twice");
     keys_.push_back(key);
     fields_.push_back(field);
   }
@@ -115,7 +162,7 @@ std::string text(const Val& v) {
 std::string choice(const Val& v, const std::vector<std::string>& allowed) {
   const std::string s = text(v);
   if (std::find(allowed.begin(), allowed.end(), s) == allowed.end())
-    fail(v, "'" + s + "' is not one of {" + join(allowed) + "}");
+    fail(v, quoted(s) + " is not one of {" + join(allowed) + "}");
   return s;
 }
 

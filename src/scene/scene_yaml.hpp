@@ -20,7 +20,9 @@ struct Val {
   bool present() const { return node.IsDefined(); }
 };
 
-// Throws SceneError "<source>:<line>: <path>: <what>".
+// "<source>:<line>: <path>: <what>", how every error and warning begins.
+std::string located(const Val& v, const std::string& what);
+// Throws SceneError(located(v, what)).
 [[noreturn]] void fail(const Val& v, const std::string& what);
 
 template <class T>
@@ -31,6 +33,12 @@ std::string str(const T& x) {
   return s.str();
 }
 std::string str(const Vec3d& v);
+// Text from the scene or a library message, cut to about `keep` characters
+// when longer, so that an error never echoes a huge value in full.
+constexpr std::size_t kEchoLength = 80;
+std::string cut(const std::string& s, std::size_t keep = kEchoLength);
+// A value from the scene as a message echoes it: 'value', cut.
+std::string quoted(const std::string& s);
 std::string join(const std::vector<std::string>& names);
 int line_of(const YAML::Node& n, int fallback);
 
@@ -70,6 +78,10 @@ Vec3d vec3_or(const Map& m, const std::string& key, const Vec3d& fallback);
 void box_corners(const Map& m, Vec3d& lo, Vec3d& hi);
 
 std::string describe(const YAML::Node& n);
+
+// The one document of a scene text; a second document after `---`, or a
+// specific tag (!name, !!type) anywhere, is an error at its line.
+YAML::Node load_document(const std::string& yaml_text, const std::string& source);
 
 // Calls f(item, index) for each item of a list.
 template <class F>

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <numeric>
+#include <string>
 #include <stdexcept>
 #include <tuple>
 
@@ -133,26 +136,97 @@ void for_each_binned_cell(const MeshSet& set, const Vec3d* vertex, std::int32_t 
       }
 }
 
+// The padding of a mesh's grid: a little more than the reach, so that a
+// point exactly at it still falls inside.
+double grid_margin(double reach) { return reach * (1 + 1e-9) + 1e-12; }
+
 // One grid over the reference vertices of mesh m, inflated by the reach.
 CellGrid mesh_grid(const MeshSet& set, std::int32_t m, double cell_size, double reach) {
-  Vec3d lo(std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-           std::numeric_limits<double>::infinity());
-  Vec3d hi = lo * -1.0;
+  Vec3d lo, hi;
+  mesh_reference_bounds(set, m, lo, hi);
+  const double margin = grid_margin(reach);
+  const Vec3d pad(margin, margin, margin);
+  return make_cell_grid(lo - pad, hi + pad, cell_size);
+}
+
+// Bound on the cells triangle (a, b, c) is binned in (see MeshBinningSize).
+double triangle_entries_bound(const Vec3d& a, const Vec3d& b, const Vec3d& c, double h, const BinningOptions& o) {
+  // Cells an interval of length L spans: fewer than L / h + 2.
+  auto span = [&](double p, double q, double r) {
+    return (std::max({p, q, r}) - std::min({p, q, r}) + 2 * o.reach) / h + 2;
+  };
+  const double box = span(a.x, b.x, c.x) * span(a.y, b.y, c.y) * span(a.z, b.z, c.z);
+  if (!o.prune_by_distance) return box;
+  const double half_diagonal = 0.5 * std::sqrt(3.0) * h;
+  const double rho = (o.reach + half_diagonal) * (1 + 1e-9) + half_diagonal;  // keep + half a diagonal
+  const double area = 0.5 * norm(cross(b - a, c - a));
+  const double perimeter = norm(b - a) + norm(c - b) + norm(a - c);
+  const double pi = 3.14159265358979323846;
+  const double dilated = 2 * rho * area + 0.5 * pi * rho * rho * perimeter + 4.0 / 3.0 * pi * rho * rho * rho;
+  return std::min(box, dilated / (h * h * h));
+}
+
+[[noreturn]] void refuse_binning(const std::string& what) {
+  throw std::runtime_error("mesh binning: " + what + "; use larger cells, a coarser mesh, or check the mesh's units");
+}
+
+std::string count_text(double x) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.3g", x);
+  return s;
+}
+
+}  // namespace
+
+void mesh_reference_bounds(const MeshSet& set, std::int32_t m, Vec3d& lo, Vec3d& hi) {
+  lo = Vec3d(std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+             std::numeric_limits<double>::infinity());
+  hi = lo * -1.0;
   for (std::int32_t v = set.vertex_begin[m]; v < set.vertex_begin[m + 1]; ++v) {
     const Vec3d& x = set.reference[v];
     lo = Vec3d(std::min(lo.x, x.x), std::min(lo.y, x.y), std::min(lo.z, x.z));
     hi = Vec3d(std::max(hi.x, x.x), std::max(hi.y, x.y), std::max(hi.z, x.z));
   }
-  // A little more than the reach: a point exactly at it still falls inside.
-  const double margin = reach * (1 + 1e-9) + 1e-12;
-  const Vec3d pad(margin, margin, margin);
-  return make_cell_grid(lo - pad, hi + pad, cell_size);
 }
 
-}  // namespace
+double MeshBinningSize::total_cells() const { return std::accumulate(cells.begin(), cells.end(), 0.0); }
+double MeshBinningSize::total_entries() const { return std::accumulate(entries.begin(), entries.end(), 0.0); }
+double MeshBinningSize::bytes() const { return 4.0 * (total_cells() + 1 + total_entries()); }
+
+MeshBinningSize binning_size(const MeshSet& set, double cell_size, const BinningOptions& options) {
+  MeshBinningSize size;
+  const double margin = grid_margin(options.reach);
+  const Vec3d pad(margin, margin, margin);
+  for (std::int32_t m = 0; m < set.n_meshes(); ++m) {
+    Vec3d lo, hi;
+    mesh_reference_bounds(set, m, lo, hi);
+    size.cells.push_back(grid_cells(lo - pad, hi + pad, cell_size));
+    size.entries.push_back(0);
+  }
+  for (std::int32_t t = 0; t < set.n_triangles(); ++t) {
+    const MeshCorners& c = set.corners[t];
+    size.entries[set.mesh[t]] += triangle_entries_bound(set.reference[c.v[0]], set.reference[c.v[1]],
+                                                        set.reference[c.v[2]], cell_size, options);
+  }
+  return size;
+}
 
 MeshBins bin_triangles(const MeshSet& set, double cell_size, const BinningOptions& options) {
   if (!(options.reach >= 0)) throw std::invalid_argument("mesh binning reach must be >= 0");
+  if (!(cell_size > 0)) throw std::invalid_argument("mesh binning cell size must be positive");
+  // Refused before anything is allocated: a mesh in the wrong units would
+  // otherwise spend minutes counting and then run out of memory.
+  const MeshBinningSize size = binning_size(set, cell_size, options);
+  for (std::int32_t m = 0; m < set.n_meshes(); ++m)
+    if (!(size.cells[m] <= kMaxGridCells))
+      refuse_binning("mesh '" + set.names[m] + "' needs " + count_text(size.cells[m]) + " cells of " +
+                     count_text(cell_size) + " m, more than " + count_text(kMaxGridCells));
+  if (!(size.total_cells() <= kMaxGridCells))
+    refuse_binning("the meshes need " + count_text(size.total_cells()) + " cells together, more than " +
+                   count_text(kMaxGridCells));
+  if (!(size.total_entries() <= kMaxBinEntries))
+    refuse_binning("up to " + count_text(size.total_entries()) +
+                   " (cell, triangle) entries would exceed the 32-bit index range");
   MeshBins bins;
   bins.first_cell.push_back(0);
   for (std::int32_t m = 0; m < set.n_meshes(); ++m) {

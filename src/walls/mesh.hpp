@@ -154,8 +154,37 @@ struct BinningOptions {
   bool prune_by_distance = true;
 };
 
+// The options a run bins with in cells of `cell_size`: reach half a cell (>=
+// the largest radius), with room for the rounding of a position carried into
+// the mesh's frame.
+inline BinningOptions run_binning(double cell_size) { return {0.5 * cell_size * (1 + 1e-9), true}; }
+
+// Most (cell, triangle) entries a binning may hold: cell_begin is 32-bit.
+constexpr double kMaxBinEntries = 2147483647.0;
+
+// What bin_triangles would build, bounded from above before anything is
+// allocated (in double, so that a mesh in the wrong units gives a huge number
+// instead of an overflow). A triangle's entries are at most the cells its
+// inflated bounding box spans; with pruning also at most the cells of edge h
+// that fit into the triangle dilated by rho = keep + sqrt(3)/2 h (every kept
+// cell lies inside it): by Steiner's formula for a flat triangle of area A
+// and perimeter P, (2 rho A + pi/2 rho^2 P + 4/3 pi rho^3) / h^3.
+struct MeshBinningSize {
+  std::vector<double> cells;    // per mesh: cells of its grid
+  std::vector<double> entries;  // per mesh: bound on its (cell, triangle) entries
+  double total_cells() const;
+  double total_entries() const;
+  double bytes() const;  // cell_begin and the triangle lists, 4 bytes an entry
+};
+MeshBinningSize binning_size(const MeshSet& set, double cell_size, const BinningOptions& options);
+
+// Axis-aligned bounds of mesh m in its reference pose.
+void mesh_reference_bounds(const MeshSet& set, std::int32_t m, Vec3d& lo, Vec3d& hi);
+
 // Bins the triangles of `set` in their reference pose, in cells of edge
 // `cell_size` (the particle grid's: one cell per sphere diameter or more).
+// Throws before allocating when a mesh's grid exceeds kMaxGridCells cells or
+// the bound of binning_size exceeds kMaxBinEntries entries.
 MeshBins bin_triangles(const MeshSet& set, double cell_size, const BinningOptions& options);
 
 // Attaches bins to a view (host pointers).

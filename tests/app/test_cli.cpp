@@ -140,6 +140,41 @@ TEST_F(CliTest, TimeStepAboveStabilityLimit) {
   expect_refused(edit("fraction_of_contact_time: 0.1", "fraction_of_contact_time: 0.5"), "time_step");
 }
 
+// Issue 18: what `run` refused (or ran badly) `check` refuses too, before
+// anything is written.
+TEST_F(CliTest, HugeDomain) {
+  expect_refused(edit("max: [0.01, 0.01, 0.01]", "max: [1e7, 1e7, 1e7]"), "scene.yaml:1: domain");
+  expect_refused(edit("max: [0.01, 0.01, 0.01]", "max: [1e30, 1e30, 1e30]"), "scene.yaml:1: domain");
+}
+
+TEST_F(CliTest, ContactCountWithoutFriction) {
+  expect_refused(edit("output: {directory: scene_out}",
+                      "output: {directory: scene_out, fields: [id, position, contact_count]}"),
+                 "scene.yaml:16: output.fields: contact_count needs friction");
+}
+
+TEST_F(CliTest, MeshInMillimetres) {
+  // A 300 mm plate read as 300 m under a 1.5 cm domain.
+  const std::string stl = (root_ / "plate_mm.stl").string();
+  std::ofstream(stl) << "solid plate\nfacet normal 0 0 1\nouter loop\nvertex -100 -100 -1\nvertex 200 -100 -1\n"
+                        "vertex 200 200 -1\nendloop\nendfacet\nendsolid plate\n";
+  expect_refused(edit("particles:", "  - mesh: {stl: " + stl + "}\n    material: glass\nparticles:"),
+                 "scene.yaml:11: walls[1].mesh: mesh 'mesh' spans [300, 300, 0] m");
+}
+
+TEST_F(CliTest, WarnsOfIgnoredFriction) {
+  write_scene(edit("restitution: 0.5}", "restitution: 0.5, friction: 0.5}"));
+  const std::string warning = "warning: scene.yaml:6: pairs[0].friction: ignored: the effect friction is off";
+  const CliResult c = run_cli("check scene.yaml");
+  EXPECT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_NE(c.err.find(warning), std::string::npos) << c.err;
+  const CliResult r = run_cli("run scene.yaml --backend cpu --steps 3 --out out_dir");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find(warning), std::string::npos) << r.err;
+  write_scene(kGoodScene);
+  EXPECT_EQ(run_cli("check scene.yaml").err, "");
+}
+
 TEST_F(CliTest, UnknownOption) { expect_refused(kGoodScene, "--bogus", "--bogus"); }
 
 TEST_F(CliTest, BadExchangeOption) {
@@ -196,6 +231,18 @@ analysis:
     min_particles: 1
     min_fill: 0
 )";
+
+// A mixing log in a directory that does not exist: `run` used to create the
+// output directory, run.log and timeseries.csv before failing.
+TEST_F(CliTest, MixingLogInMissingDirectory) {
+  std::string scene = kMixingScene;
+  scene.replace(scene.find("    min_fill: 0\n"), 16, "    min_fill: 0\n    output: " +
+                (root_ / "missing" / "mix.csv").string() + "\n");
+  expect_refused(scene, "analysis.mixing.output: the directory");
+  scene = kMixingScene;
+  scene.replace(scene.find("    min_fill: 0\n"), 16, "    min_fill: 0\n    output: sub/mix.csv\n");
+  expect_refused(scene, "analysis.mixing.output: a relative path");
+}
 
 // `grainstorm mixing` over the run's snapshots reproduces the run's own
 // analysis row for row (the masses are recomputed from radius and density,

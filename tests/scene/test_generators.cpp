@@ -58,6 +58,24 @@ TEST(Lattice, CountIsExactAndSitesAreOnTheLattice) {
   EXPECT_EQ(lattice_sites(1, 0, 0.25), 0u);
 }
 
+// Counts beyond the particle ids are refused, not wrapped: a max of 1e20 m
+// used to give one layer of 16 spheres.
+TEST(Lattice, OverflowingCountsAreRefused) {
+  EXPECT_THROW(lattice_sites(0, 1e20, 0.003), GenerateError);
+  LatticeSpec l;
+  l.radius = 0.001;
+  l.spacing = 0.003;
+  l.min = Vec3d(0, 0, 0);
+  l.max = Vec3d(1e20, 0.01, 0.01);
+  EXPECT_THROW(lattice_count(l), GenerateError);
+  // Each axis fits, the product does not: 1e4 sites per axis is 1e12 sites.
+  l.max = Vec3d(30, 30, 30);
+  EXPECT_THROW(lattice_count(l), GenerateError);
+  std::vector<ParticleInit> out;
+  EXPECT_THROW(generate_lattice(l, out), GenerateError);
+  EXPECT_TRUE(out.empty());
+}
+
 TEST(RandomFill, NoOverlapsAndInsideRegionWithOneToFiveSizes) {
   std::vector<ParticleInit> out;
   generate_random_fill(box_fill(2000, 0.0002, 0.001, 7), out);

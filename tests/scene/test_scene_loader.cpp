@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 #include <fstream>
 
 #include "contact/contact_time.hpp"
@@ -363,6 +364,105 @@ TEST(SceneLoader, DemoSceneLoads) {
   // Cheap enough for the demo's one-minute budget: ~11k steps.
   EXPECT_LT(s.duration / s.time_step, 12000);
   EXPECT_THROW(load_scene(demo + ".missing"), SceneError);
+}
+
+// ---- issue 18: what run refused and check accepted, numbers that overflow,
+// ignored parameters, extra documents and tags, huge echoed values ----------
+
+TEST(SceneLoaderErrors, HugeDomainIsRefusedNotOneCell) {
+  // 1e7 m in cells of 4 mm: 1.6e28 cells; the int conversion used to give 1 cell.
+  for (const char* max : {"max: [1e7, 1e7, 1e7]", "max: [1e30, 0.1, 0.1]"})
+    expect_error(edit("max: [0.1, 0.1, 0.1]", max), 1, "domain", "cells of at least 0.004 m");
+}
+
+TEST(SceneLoaderErrors, HugeLatticeIsRefusedNotOneLayer) {
+  // 1e20 m / 3 mm sites along x: the size_t conversion used to give 16 spheres.
+  expect_error(edit("max: [0.019, 0.029, 0.039]", "max: [1e20, 0.029, 0.039]"), 14, "particles[0].lattice",
+               "more than the");
+}
+
+TEST(SceneLoaderErrors, ContactCountWithoutHistoryHasFileAndLine) {
+  const std::string frictionless = edit("effects: {friction: true}", "effects: {cohesion: false}");
+  expect_error(edit("output: {interval: 0.01, directory: res}",
+                    "output: {interval: 0.01, directory: res, fields: [id, position, contact_count]}", frictionless),
+               19, "output.fields", "contact_count needs friction");
+  EXPECT_NO_THROW(parse_scene(edit("output: {interval: 0.01, directory: res}",
+                                   "output: {interval: 0.01, directory: res, fields: [id, position, contact_count]}"),
+                              "scene.yaml"));
+}
+
+TEST(SceneLoader, WarnsOfParametersOfEffectsThatAreOff) {
+  EXPECT_TRUE(parse_scene(kGood, "scene.yaml").warnings.empty());
+  const SceneSpec s = parse_scene(edit("effects: {friction: true}", "effects: {cohesion: false}"), "scene.yaml");
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_EQ(s.warnings[0].rfind("scene.yaml:8: pairs[0].friction: ignored: the effect friction is off", 0), 0u)
+      << s.warnings[0];
+  // Every parameter of an effect that is off, with its line; a zero friction agrees with friction off.
+  const std::string pair = "  - {materials: [steel, glass], stiffness_normal: 2000, restitution: 0.6}";
+  const SceneSpec all = parse_scene(
+      edit(pair,
+           "  - {materials: [steel, glass], stiffness_normal: 2000, restitution: 0.6, friction: 0,\n"
+           "     stiffness_tangential: 500, rolling_friction: 0.1, stiffness_rolling: 100, cohesion_energy_density: 5}",
+           edit("effects: {friction: true}", "effects: {friction: false}")),
+      "scene.yaml");
+  const std::vector<std::string> keys = {"pairs[0].friction", "pairs[1].stiffness_tangential",
+                                         "pairs[1].rolling_friction", "pairs[1].stiffness_rolling",
+                                         "pairs[1].cohesion_energy_density"};
+  ASSERT_EQ(all.warnings.size(), keys.size());
+  for (std::size_t k = 0; k < keys.size(); ++k)
+    EXPECT_NE(all.warnings[k].find(keys[k]), std::string::npos) << all.warnings[k];
+  EXPECT_EQ(all.warnings[1].rfind("scene.yaml:10: ", 0), 0u) << all.warnings[1];
+}
+
+TEST(SceneLoaderErrors, SecondDocumentIsRefused) {
+  expect_error(kGood + "---\nduration: 1\n", 21, "yaml", "a second document");
+}
+
+TEST(SceneLoaderErrors, TagsAreRefused) {
+  expect_error(edit("gravity: [0, 0, -9.81]", "gravity: !vec [0, 0, -9.81]"), 2, "'!vec'", "not supported");
+  expect_error(edit("duration: 0.5", "duration: !!float 0.5"), 18, "tag:yaml.org,2002:float", "not supported");
+  expect_error(edit("radius: 0.002", "radius: !custom 0.002"), 16, "'!custom'", "not supported");
+  // Quoted values carry the non-specific tag "!", which is no tag.
+  EXPECT_NO_THROW(parse_scene(edit("directory: res", "directory: \"res\""), "scene.yaml"));
+}
+
+TEST(SceneLoaderErrors, EchoedValuesAreCut) {
+  const std::string huge(1000000, 'g');
+  const std::string key(1000, 'k');  // YAML allows implicit keys up to 1024 characters
+  for (const auto& [from, to, size] : std::vector<std::tuple<std::string, std::string, std::size_t>>{
+           {"duration: 0.5", "duration: " + huge, huge.size()},              // not a number
+           {"gravity: [0, 0, -9.81]", "gravity: " + huge, huge.size()},      // not a list
+           {"material: steel", "material: " + huge, huge.size()},            // unknown material
+           {"format: csv", "format: " + huge, huge.size()},                  // not a choice
+           {"gravity:", key + ":", key.size()}}) {                            // unknown key
+    const std::string msg = error_of(edit(from, to, edit("directory: res", "directory: res, format: csv")));
+    EXPECT_LT(msg.size(), 700u) << msg.substr(0, 700);
+    EXPECT_NE(msg.find("... (" + std::to_string(size) + " characters)"), std::string::npos) << msg.substr(0, 700);
+  }
+}
+
+// An STL in millimetres read as metres: 300 m x 300 m under a 0.1 m domain.
+TEST(SceneLoaderErrors, MeshInMillimetresIsRefusedBeforeBinning) {
+  const std::string stl = testing::TempDir() + "/gs_plate_mm.stl";
+  {
+    std::ofstream f(stl);
+    f << "solid plate\n";
+    const double q[4][3] = {{-100, -100, -1}, {200, -100, -1}, {200, 200, -1}, {-100, 200, -1}};
+    const int triangles[2][3] = {{0, 1, 2}, {0, 2, 3}};
+    for (const auto& t : triangles) {
+      f << "facet normal 0 0 1\nouter loop\n";
+      for (int k = 0; k < 3; ++k) f << "vertex " << q[t[k]][0] << " " << q[t[k]][1] << " " << q[t[k]][2] << "\n";
+      f << "endloop\nendfacet\n";
+    }
+    f << "endsolid plate\n";
+  }
+  const std::string wall = "  - box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}\n    material: steel\n";
+  const std::string mm = wall + "  - mesh: {stl: " + stl + "}\n    material: steel\n";
+  expect_error(edit(wall, mm), 13, "walls[1].mesh", "mesh 'mesh' spans [300, 300, 0] m against a domain of");
+  EXPECT_NE(error_of(edit(wall, mm)).find("scale: 0.001"), std::string::npos);
+  // In metres it is a 0.3 m plate below the domain, binned in a few thousand cells.
+  const std::string m = wall + "  - mesh: {stl: " + stl + ", scale: 0.001}\n    material: steel\n";
+  EXPECT_NO_THROW(parse_scene(edit(wall, m), "scene.yaml"));
 }
 
 }  // namespace

@@ -212,5 +212,65 @@ TEST(MeshBinning, RejectsNegativeReach) {
   EXPECT_THROW(bin_triangles(set, 0.01, BinningOptions{-1, true}), std::invalid_argument);
 }
 
+// binning_size bounds what bin_triangles builds, for any cell size and both
+// binnings: the same cells, and at least as many entries per mesh as the
+// binning holds. For large triangles the Steiner bound stays within a small
+// factor of the truth (a flat sheet fills ~2.7 cells of thickness, the bound 4.5).
+TEST(MeshBinning, SizeBoundsTheBinning) {
+  const MeshSet set = two_mesh_set();
+  for (const double h : {0.0007, 0.0019, 0.0071, 0.03}) {
+    for (const bool prune : {false, true}) {
+      const BinningOptions o = prune ? run_binning(h) : BinningOptions{0.5 * h, false};
+      const MeshBins bins = bin_triangles(set, h, o);
+      const MeshBinningSize size = binning_size(set, h, o);
+      for (std::int32_t m = 0; m < set.n_meshes(); ++m) {
+        const double cells = double(bins.first_cell[m + 1] - bins.first_cell[m]);
+        const double entries = double(bins.cell_begin[bins.first_cell[m + 1]] - bins.cell_begin[bins.first_cell[m]]);
+        EXPECT_EQ(size.cells[std::size_t(m)], cells) << "h " << h << " mesh " << m;
+        EXPECT_GE(size.entries[std::size_t(m)], entries) << "h " << h << " mesh " << m << " prune " << prune;
+        if (prune && h < 0.001) EXPECT_LT(size.entries[std::size_t(m)], 4 * entries) << "h " << h << " mesh " << m;
+      }
+      EXPECT_DOUBLE_EQ(size.bytes(), 4 * (size.total_cells() + 1 + size.total_entries()));
+    }
+  }
+}
+
+// A mesh in millimetres read as metres is refused before the binning
+// allocates or counts anything: 300 m in cells of 2 mm.
+TEST(MeshBinning, RefusesAHugeBinningBeforeAllocating) {
+  TriangleMeshBuilder b("plate");
+  b.quad(b.vertex({-100, -100, 0}), b.vertex({200, -100, 0}), b.vertex({200, 200, 0}), b.vertex({-100, 200, 0}));
+  MeshSet set;
+  add_mesh(set, b.take());
+  const MeshBinningSize size = binning_size(set, 0.002, run_binning(0.002));
+  EXPECT_GT(size.cells[0], kMaxGridCells);
+  EXPECT_GT(size.entries[0], 2e10);  // ~2.7 x (300 / 0.002)^2
+  try {
+    bin_triangles(set, 0.002, run_binning(0.002));
+    ADD_FAILURE() << "not refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("mesh 'plate' needs"), std::string::npos) << e.what();
+  }
+  // A small grid with many entries: 1000 stacked 1 m sheets, 1 um apart, in
+  // cells of 1 mm: 3e6 cells, but ~2.7e9 entries (more than 2^31 - 1), which
+  // the binning used to count one by one for minutes before refusing.
+  TriangleMeshBuilder stack("stack");
+  for (int k = 0; k < 1000; ++k) {
+    const double z = 1e-6 * k;
+    stack.quad(stack.vertex({0, 0, z}), stack.vertex({1, 0, z}), stack.vertex({1, 1, z}), stack.vertex({0, 1, z}));
+  }
+  MeshSet stacked;
+  add_mesh(stacked, stack.take());
+  const MeshBinningSize stacked_size = binning_size(stacked, 0.001, run_binning(0.001));
+  EXPECT_LT(stacked_size.cells[0], 4e6);
+  EXPECT_GT(stacked_size.entries[0], kMaxBinEntries);
+  try {
+    bin_triangles(stacked, 0.001, run_binning(0.001));
+    ADD_FAILURE() << "not refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("up to"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace gs
