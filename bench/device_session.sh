@@ -2,7 +2,7 @@
 # One session on a GPU machine: build with CUDA, run the whole test suite on
 # both backends, compare CPU and GPU runs of the demo, then the benchmarks.
 # Results go to $OUT (default ./device_out). Usage, from the repository root:
-#   bench/device_session.sh [all|tests|bench|baseline|effects|mixer|mixprofile|mixacc|accuracy|output|scaling][,...]
+#   [TESTS_REGEX=re] [TESTS_EXCLUDE=re] bench/device_session.sh [all|tests|bench|baseline|effects|mixer|mixprofile|mixacc|accuracy|output|scaling][,...]
 # METIS and yaml-cpp may be carried as unpacked Debian packages in carry/root
 # (see docs/PERFORMANCE.md) when the machine lacks them.
 set -uo pipefail
@@ -31,7 +31,7 @@ echo "build ok" >> "$log"
 wants() { [[ ,$what, == *,all,* || ,$what, == *,$1,* ]]; }
 
 if wants tests; then
-  (cd build-gpu && GS_TEST_BACKENDS=cpu,cuda OMP_NUM_THREADS=4 timeout ${TESTS_LIMIT:-400} ctest -j 4 --timeout 300 --output-on-failure ${TESTS_REGEX:+-R "$TESTS_REGEX"} \
+  (cd build-gpu && GS_TEST_BACKENDS=cpu,cuda OMP_NUM_THREADS=4 timeout ${TESTS_LIMIT:-400} ctest -j 4 --timeout 300 --output-on-failure ${TESTS_REGEX:+-R "$TESTS_REGEX"} ${TESTS_EXCLUDE:+-E "$TESTS_EXCLUDE"} \
      > "$OUT/ctest_gpu.log" 2>&1)
   tail -25 "$OUT/ctest_gpu.log" >> "$log"
   # CPU against GPU on the demo scene, and 2 ranks sharing the GPU against 1.
