@@ -18,7 +18,7 @@ struct PairParams {
   Real damping_factor_normal;      // linear: 2 zeta sqrt(k_n); Hertz: 2 sqrt(5/6) zeta sqrt(2 E*)
   Real damping_factor_tangential;  // linear: 2 zeta sqrt(k_t); Mindlin: 2 sqrt(5/6) zeta sqrt(8 G*)
   Real friction;              // Coulomb coefficient mu
-  Real rolling_friction;      // dimensionless mu_r: rolling torque cap mu_r R_eff |f_n|
+  Real rolling_friction;      // dimensionless mu_r: rolling torque cap mu_r R_eff f_n
   Real cohesion;              // cohesion energy density k_c [N/m^2]: f = k_c * contact area
   Real youngs_modulus_eff;    // Hertz: E* [Pa]
   Real shear_modulus_eff;     // Hertz: G* [Pa]
