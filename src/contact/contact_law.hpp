@@ -23,8 +23,8 @@ struct ContactKinematics {
 // Spring history of one contact; unused members are never touched.
 template <class Real>
 struct ContactSprings {
-  Vec3<Real> tangential;
-  Vec3<Real> rolling;
+  Vec3<Real> tangential;  // elastic tangential force f_e [N]
+  Vec3<Real> rolling;     // rolling displacement xi_r [m]
 };
 
 template <class Real>
@@ -38,7 +38,7 @@ GS_HD GS_INLINE ContactLoad<Real> contact_load(const PairParams<Real>& p, const 
                                                ContactSprings<Real>& springs, Real dt) {
   const Real normal_speed = dot(c.velocity, c.normal);
   const Real overlap_rate = -normal_speed;
-  Real normal_force;
+  Real normal_force;  // repulsive, >= 0: the clamped spring-dashpot
   [[maybe_unused]] Real root_mass = 0;           // linear
   [[maybe_unused]] HertzContact<Real> hertz{};  // Hertz-Mindlin
   if constexpr (Model == ContactModel::linear) {
@@ -49,7 +49,7 @@ GS_HD GS_INLINE ContactLoad<Real> contact_load(const PairParams<Real>& p, const 
     normal_force = hertz_normal_force(p, c.overlap, overlap_rate, hertz);
   }
   ContactLoad<Real> load;
-  Real total_normal = normal_force;
+  Real total_normal = normal_force;  // cohesion, the only attraction, comes after the clamp
   if constexpr ((Effects & kCohesion) != 0) total_normal -= cohesion_force(p, c.overlap, c.effective_radius);
   load.force = c.normal * total_normal;
 
@@ -69,12 +69,8 @@ GS_HD GS_INLINE ContactLoad<Real> contact_load(const PairParams<Real>& p, const 
   if constexpr ((Effects & kRollingResistance) != 0) {
     const Vec3<Real> spin = c.normal * dot(c.angular_velocity, c.normal);  // twisting is not resisted
     const Vec3<Real> rolling_velocity = (c.angular_velocity - spin) * c.effective_radius;
-    Real stiffness = p.stiffness_rolling;
-    if constexpr (Model == ContactModel::hertz_mindlin) {
-      stiffness = mindlin_tangential_coefficients(p, hertz).stiffness;
-    }
-    load.torque += rolling_torque(springs.rolling, c.normal, rolling_velocity, stiffness, p.rolling_friction,
-                                  normal_force, c.effective_radius, dt);
+    load.torque += rolling_torque(springs.rolling, c.normal, rolling_velocity, p.stiffness_rolling,
+                                  p.rolling_friction, normal_force, c.effective_radius, dt);
   }
   return load;
 }

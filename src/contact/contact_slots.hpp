@@ -12,8 +12,8 @@ namespace gs {
 template <class Real, unsigned Effects>
 struct SlotTable {
   ParticleId* partner;
-  Vec3<Real>* tangential;
-  Vec3<Real>* rolling;
+  Vec3<Real>* tangential;  // elastic tangential force [N]
+  Vec3<Real>* rolling;     // rolling displacement [m]
   int slots;
   HistoryStrides strides;
 

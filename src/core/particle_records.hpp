@@ -15,8 +15,8 @@ namespace gs {
 struct HostHistory {
   int slots = 0;
   std::vector<ParticleId> partner;
-  std::vector<Vec3d> tangential;  // empty unless friction is on
-  std::vector<Vec3d> rolling;     // empty unless rolling resistance is on
+  std::vector<Vec3d> tangential;  // elastic tangential force [N]; empty unless friction is on
+  std::vector<Vec3d> rolling;     // rolling displacement [m]; empty unless rolling resistance is on
 };
 
 struct ParticleRecords {

@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "backend/backend.hpp"
-#include "contact/contact_time.hpp"
+#include "contact/restitution.hpp"
 
 namespace gs {
 
@@ -31,7 +31,9 @@ double shear_eff(const MaterialSpec& a, const MaterialSpec& b) {
 
 // gamma = 2 zeta sqrt(m_eff k) (linear) and 2 sqrt(5/6) zeta sqrt(S m_eff)
 // with S_n = 2 E* a, S_t = 8 G* a (Hertz-Mindlin): the factors in front of
-// the contact's own root (contact/normal_force.hpp).
+// the contact's own root (contact/normal_force.hpp). zeta is that of the
+// clamped normal law (contact/restitution.hpp); the tangential dashpot uses
+// the same ratio.
 void set_damping_factors(PairTableHost& t, std::size_t k, ContactModel model, double zeta) {
   if (model == ContactModel::linear) {
     t.damping_factor_normal[k] = 2 * zeta * std::sqrt(t.stiffness_normal[k]);
@@ -68,7 +70,7 @@ PairTableHost make_pair_table(const SceneSpec& scene) {
         t.youngs_modulus_eff[k] = youngs_eff(a, b);
         t.shear_modulus_eff[k] = shear_eff(a, b);
       }
-      set_damping_factors(t, k, scene.model, damping_ratio_from_restitution(p.restitution));
+      set_damping_factors(t, k, scene.model, damping_ratio(scene.model, p.restitution));
     }
   }
   return t;

@@ -23,7 +23,10 @@ struct CheckpointError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-constexpr int kCheckpointFormatVersion = 1;
+// 2: history/tangential holds the elastic tangential force [N] of the
+// incremental friction law; version 1 held a spring displacement [m], which
+// this law cannot continue from.
+constexpr int kCheckpointFormatVersion = 2;
 
 struct Checkpoint {
   long long step = 0;

@@ -41,6 +41,10 @@ void check_header(const h5::File& f) {
   const std::string kind = h5::read_string_attribute(f, "/", "kind");
   if (kind != "grainstorm checkpoint") refuse(path, "not a grainstorm checkpoint (kind '" + kind + "')");
   const auto version = h5::read_attribute<std::int32_t>(f, "/", "format_version");
+  if (version == 1)
+    refuse(path, "format version 1, but this grainstorm reads version " + std::to_string(kCheckpointFormatVersion) +
+                     ": version 1 stored the tangential springs as displacements [m], this friction law carries "
+                     "their elastic force [N]; rerun from the scene");
   if (version != kCheckpointFormatVersion)
     refuse(path, "format version " + std::to_string(version) + ", but this grainstorm reads version " +
                      std::to_string(kCheckpointFormatVersion));

@@ -236,6 +236,23 @@ TEST(Checkpoint, OtherFormatVersionIsRefused) {
   EXPECT_NE(refusal(path).find("format version 99"), std::string::npos) << refusal(path);
 }
 
+// Version 1 stored the tangential springs as displacements; the incremental
+// friction law carries forces, so such a file cannot be continued.
+TEST(Checkpoint, VersionOneIsRefusedWithTheReason) {
+  ScratchDir dir;
+  const std::string path = dir.file("checkpoint.h5");
+  write_checkpoint(path, sample_checkpoint());
+  edit_h5(path, [](hid_t f) {
+    const hid_t a = H5Aopen(f, "format_version", H5P_DEFAULT);
+    const std::int32_t version = 1;
+    ASSERT_GE(H5Awrite(a, H5T_NATIVE_INT32, &version), 0);
+    H5Aclose(a);
+  });
+  const std::string why = refusal(path);
+  EXPECT_NE(why.find("format version 1, but this grainstorm reads version 2"), std::string::npos) << why;
+  EXPECT_NE(why.find("tangential springs as displacements"), std::string::npos) << why;
+}
+
 TEST(Checkpoint, UnfinishedFileIsRefused) {
   ScratchDir dir;
   const std::string path = dir.file("checkpoint.h5");
