@@ -372,13 +372,13 @@ def print_tables(rows, nphase):
 # --- the loader's fractions ---------------------------------------------------------------
 
 def loader_fraction_tables(nphase):
-    """h as the loader derives it: linear, a fraction of the unclamped
-    spring-dashpot half period pi / (omega0 sqrt(1 - zeta_u^2)) (contact_time.cpp,
-    zeta_u from the unclamped relation); Hertz, of the Rayleigh time, for
+    """h as the loader derives it: linear, a fraction of the clamped contact's
+    duration (contact_time.cpp; before 2026-12-02 it was the unclamped half
+    period pi / (omega0 sqrt(1 - zeta_u^2))); Hertz, of the Rayleigh time, for
     accuracy_study's spheres (R = 1 mm, rho = 2500, E = 5 MPa, nu = 0.25, two
     equal spheres approaching at 1 m/s)."""
     print("\nThe loader's fractions: h / t_c(actual) for fraction_of_contact_time f")
-    print("  linear: t_c(loader) = pi / (omega0 sqrt(1 - zeta_u^2)), zeta_u = -ln e / sqrt(pi^2 + ln^2 e)")
+    print("  linear: t_c(loader) = the clamped contact's duration 2 arccos(zeta) / (omega0 sqrt(1 - zeta^2))")
     r, rho, young, nu, v0 = 1e-3, 2500.0, 5e6, 0.25, 1.0
     shear = young / (2 * (1 + nu))
     t_rayleigh = math.pi * r * math.sqrt(rho / shear) / (0.1631 * nu + 0.8766)
@@ -390,11 +390,11 @@ def loader_fraction_tables(nphase):
     ratio = {}
     for e in RESTITUTIONS:
         z = zeta_clamped(e)
-        lin = exact_linear(z)[1] / (math.pi / math.sqrt(1 - zeta_unclamped(e) ** 2))
+        lin = 1.0
         her = reference("hertz", z)[1] * unit / t_rayleigh
         ratio["linear", e], ratio["hertz", e] = lin, her
         print(f"{e:4.1f}  linear  {lin:.4f}\n{e:4.1f}  hertz   {her:.4f}")
-    fracs = [0.2, 0.1, 0.054, 0.05, 0.045, 0.025]
+    fracs = [0.2, 0.11, 0.1, 0.05, 0.025]
     print("\nErrors at the loader's fractions, max over the phases, restitution / contact duration [%]")
     print("model   e    scheme " + "".join(f"{f:>17g}" for f in fracs))
     for model in ("linear", "hertz"):
@@ -422,7 +422,9 @@ def accuracy_study_impact(model, fraction, clamp):
     zeta = zeta_clamped(e) if clamp else zu
     if model == "linear":
         omega0 = math.sqrt(k / m_eff)
-        t_loader = math.pi / (omega0 * math.sqrt(1 - zu * zu))
+        # the loader's t_c: the clamped contact's duration since the clamp, the
+        # unclamped half period before
+        t_loader = exact_linear(zeta)[1] / omega0 if clamp else math.pi / (omega0 * math.sqrt(1 - zu * zu))
         t_unit = 1 / omega0
     else:
         young, nu = 5e6, 0.25
@@ -466,10 +468,9 @@ def code_yaml_prediction():
     r, rho, e, v0, k, z0 = 1e-3, 2500.0, 0.5, 1.0, 1000.0, 1.1e-3
     m = float(np.float32(4 / 3 * math.pi * r ** 3 * rho))
     omega0 = math.sqrt(k / m)
-    zu = zeta_unclamped(e)
-    t_loader = math.pi / (omega0 * math.sqrt(1 - zu * zu))
     zeta = zeta_clamped(e)
     tc = exact_linear(zeta)[1] / omega0
+    t_loader = tc  # the loader's t_c is the clamped contact's duration
     gap0 = (z0 - r) * omega0 / v0
     print(f"bench/impact_step.yaml: t_c(loader) = {t_loader:.6g} s, t_c(actual) = {tc:.6g} s")
     print("fraction  h/t_c(actual)  rebound speed (scheme A)  e error")

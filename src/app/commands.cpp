@@ -34,6 +34,8 @@ int command_check(const std::vector<std::string>& args) {
   std::printf("contact time:   %.6g s\n", scene.contact_time);
   std::printf("time step:      %.6g s (%.4g of the contact time)\n", scene.time_step,
               scene.time_step / scene.contact_time);
+  std::printf("stable limit:   %.6g s (%.4g of the contact time), set by the %s\n", scene.stable_time_step,
+              scene.stable_time_step / scene.contact_time, scene.stable_step_binding.c_str());
   std::printf("steps:          %lld\n", std::llround(scene.duration / scene.time_step));
   std::printf("memory:         %s (%.0f bytes per particle, %s for %lld cells)\n",
               human_bytes(m.total_bytes).c_str(), m.bytes_per_particle, human_bytes(m.cell_bytes).c_str(),

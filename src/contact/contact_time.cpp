@@ -1,5 +1,7 @@
 #include "contact/contact_time.hpp"
 
+#include "contact/restitution.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,14 +9,22 @@
 
 namespace gs {
 
-double damping_ratio_from_restitution(double e) {
-  const double log_e = std::log(e);
-  return -log_e / std::sqrt(M_PI * M_PI + log_e * log_e);
+double effective_youngs_modulus(const MaterialSpec& a, const MaterialSpec& b) {
+  return 1.0 / ((1 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus +
+                (1 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus);
+}
+
+double effective_shear_modulus(const MaterialSpec& a, const MaterialSpec& b) {
+  return 1.0 / (2 * (2 - a.poisson_ratio) * (1 + a.poisson_ratio) / a.youngs_modulus +
+                2 * (2 - b.poisson_ratio) * (1 + b.poisson_ratio) / b.youngs_modulus);
 }
 
 double linear_contact_time(double kn, double m_eff, double e) {
-  const double zeta = damping_ratio_from_restitution(e);
-  return M_PI / (std::sqrt(kn / m_eff) * std::sqrt(1.0 - zeta * zeta));
+  const double zeta = damping_ratio(ContactModel::linear, e);
+  const double omega0 = std::sqrt(kn / m_eff);
+  if (zeta < 1) return 2 * std::acos(zeta) / (omega0 * std::sqrt(1 - zeta * zeta));
+  if (zeta == 1) return 2 / omega0;
+  return 2 * std::acosh(zeta) / (omega0 * std::sqrt(zeta * zeta - 1));
 }
 
 double rayleigh_time(double r, double rho, double youngs, double nu) {

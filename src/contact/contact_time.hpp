@@ -7,11 +7,16 @@ namespace gs {
 // this, rounded to fp32).
 double sphere_mass(double r, double rho);
 
-// Damping ratio zeta of a linear spring-dashpot whose normal coefficient of
-// restitution is e: e = exp(-pi zeta / sqrt(1 - zeta^2)).
-double damping_ratio_from_restitution(double restitution);
+// Effective moduli of two Hertzian materials: 1/E* = sum (1 - nu^2)/E and
+// 1/G* = sum 2 (2 - nu)(1 + nu)/E.
+double effective_youngs_modulus(const MaterialSpec& a, const MaterialSpec& b);
+double effective_shear_modulus(const MaterialSpec& a, const MaterialSpec& b);
 
-// Duration of a linear spring-dashpot contact: pi / (omega0 sqrt(1 - zeta^2)).
+// Duration of a lone contact of the clamped linear spring-dashpot
+// (contact/normal_force.hpp) whose restitution is e: the force returns to zero
+// when omega0 sqrt(1 - zeta^2) t = 2 arccos(zeta), before the overlap does
+// (zeta from contact/restitution.hpp; overdamped: 2 arccosh(zeta) over
+// omega0 sqrt(zeta^2 - 1)).
 double linear_contact_time(double stiffness_normal, double effective_mass, double restitution);
 
 // Rayleigh time of a sphere of radius r: the time scale of Hertzian contacts.
@@ -19,12 +24,9 @@ double rayleigh_time(double radius, double density, double youngs_modulus, doubl
 
 // Shortest contact time over every pair of materials that can touch, using the
 // smallest particles of each material present in the scene (linear model: the
-// spring-dashpot period; Hertz-Mindlin: the Rayleigh time).
+// clamped spring-dashpot's contact duration; Hertz-Mindlin: the Rayleigh
+// time). It is the unit of fraction_of_contact_time; the largest step accepted
+// is contact/stable_step.hpp's.
 double critical_contact_time(const SceneSpec& scene);
-
-// Largest time step accepted for a given contact time. Velocity Verlet on a lone
-// contact is stable below 0.64 t_c; a particle pressed by many neighbours sees a
-// stiffer effective spring, so the limit keeps a margin of ~3.
-constexpr double kStableFractionOfContactTime = 0.2;
 
 }  // namespace gs

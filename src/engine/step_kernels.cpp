@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "backend/backend.hpp"
+#include "contact/contact_time.hpp"
 #include "contact/restitution.hpp"
 
 namespace gs {
@@ -18,16 +19,6 @@ std::unique_ptr<StepKernels> make_step_kernels(const KernelChoice& c, const Pair
 }
 
 namespace {
-
-// Effective moduli of two Hertzian materials.
-double youngs_eff(const MaterialSpec& a, const MaterialSpec& b) {
-  return 1.0 / ((1 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus +
-                (1 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus);
-}
-double shear_eff(const MaterialSpec& a, const MaterialSpec& b) {
-  return 1.0 / (2 * (2 - a.poisson_ratio) * (1 + a.poisson_ratio) / a.youngs_modulus +
-                2 * (2 - b.poisson_ratio) * (1 + b.poisson_ratio) / b.youngs_modulus);
-}
 
 // gamma = 2 zeta sqrt(m_eff k) (linear) and 2 sqrt(5/6) zeta sqrt(S m_eff)
 // with S_n = 2 E* a, S_t = 8 G* a (Hertz-Mindlin): the factors in front of
@@ -67,8 +58,8 @@ PairTableHost make_pair_table(const SceneSpec& scene) {
       if (scene.model == ContactModel::hertz_mindlin) {
         const MaterialSpec& a = scene.materials[p.material_a];
         const MaterialSpec& b = scene.materials[p.material_b];
-        t.youngs_modulus_eff[k] = youngs_eff(a, b);
-        t.shear_modulus_eff[k] = shear_eff(a, b);
+        t.youngs_modulus_eff[k] = effective_youngs_modulus(a, b);
+        t.shear_modulus_eff[k] = effective_shear_modulus(a, b);
       }
       set_damping_factors(t, k, scene.model, damping_ratio(scene.model, p.restitution));
     }

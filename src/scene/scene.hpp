@@ -89,6 +89,8 @@ struct SceneSpec {
   MeshSet meshes;                    // triangle-mesh walls (docs/MESHES.md); names in meshes.names
   double time_step = 0;              // resolved absolute time step [s]
   double contact_time = 0;           // shortest pair contact time [s]
+  double stable_time_step = 0;       // largest stable step (contact/stable_step.hpp) [s]
+  std::string stable_step_binding;   // the spring that sets it
   double duration = 0;               // simulated time [s]
   OutputSpec output;
   int contact_slots = 12;            // history slots per particle

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "contact/contact_time.hpp"
+#include "contact/stable_step.hpp"
 #include "io/snapshot_fields.hpp"
 #include "neighbor/cell_grid.hpp"
 #include "scene/generators.hpp"
@@ -222,12 +223,16 @@ void resolve_time_step(const Map& top, SceneSpec& s) {
   const Map m(v, {"absolute", "fraction_of_contact_time"});
   const std::string kind = m.one_of({"absolute", "fraction_of_contact_time"});
   s.contact_time = critical_contact_time(s);
+  const StableStep limit = stable_time_step(s);
+  s.stable_time_step = limit.time_step;
+  s.stable_step_binding = limit.binding;
   s.time_step = positive(m.get(kind));
   if (kind == "fraction_of_contact_time") s.time_step *= s.contact_time;
-  const double limit = kStableFractionOfContactTime * s.contact_time;
-  if (!(s.time_step <= limit))
-    fail(v, "time step " + str(s.time_step) + " s exceeds the stability limit " + str(limit) + " s (" +
-                str(kStableFractionOfContactTime) + " x the shortest contact time " + str(s.contact_time) + " s)");
+  if (!(s.time_step <= limit.time_step))
+    fail(v, "time step " + str(s.time_step) + " s (" + str(s.time_step / s.contact_time) +
+                " of the contact time) exceeds the stability limit " + str(limit.time_step) + " s (" +
+                str(limit.time_step / s.contact_time) + " of the contact time), set by the " + limit.binding +
+                " in a dense bed (docs/STABILITY.md)");
 }
 
 }  // namespace

@@ -14,6 +14,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "contact/contact_time.hpp"
+#include "contact/stable_step.hpp"
 #include "scene/generators.hpp"
 #include "support/support.hpp"
 #include "walls/wall_geometry.hpp"
@@ -30,6 +32,23 @@ inline bool stability_long() {
 template <class T>
 T short_or_long(T short_value, T long_value) {
   return stability_long() ? long_value : short_value;
+}
+
+// GS_STABILITY_STEP_FACTOR=f runs every case at f times the largest accepted
+// step, to see the suite fail above the limit (docs/STABILITY.md).
+inline double step_factor() {
+  const char* env = std::getenv("GS_STABILITY_STEP_FACTOR");
+  return env && env[0] != '\0' ? std::atof(env) : 1.0;
+}
+
+// The largest step the scene loader accepts for this scene
+// (contact/stable_step.hpp), with the contact time it is measured against.
+inline void set_largest_accepted_step(SceneSpec& scene) {
+  scene.contact_time = critical_contact_time(scene);
+  const StableStep limit = stable_time_step(scene);
+  scene.stable_time_step = limit.time_step;
+  scene.stable_step_binding = limit.binding;
+  scene.time_step = step_factor() * limit.time_step;
 }
 
 // Deepest overlaps in a snapshot, relative to a radius.

@@ -1,7 +1,7 @@
 // Stability case 3 (docs/STABILITY.md): a single column of N >= 200 spheres
 // stacked in a narrow box, at rest for a long time at the largest accepted
 // time step. The column is a chain of N springs in series; its stiffest mode
-// has omega = 2 sqrt(k / m), omega dt = 0.89 at dt = 0.2 t_c, stable, and its
+// has omega = 2 sqrt(k / m), omega dt < 2 at the largest accepted step, and its
 // slowest ones are barely damped (modal damping ratio ~ zeta pi / 2N), so an
 // integrator that feeds in energy, or a force that creeps, shows as drift.
 // Each contact carries the weight of the spheres above it: the wall contact
@@ -37,8 +37,7 @@ SceneSpec column_scene(int count, Precision precision) {
     scene.particles.push_back(particle(i, kRadius, {0, 0, z}));
     z += 2 * kRadius - (count - 1 - i) * weight() / kStiffness;
   }
-  scene.contact_time = critical_contact_time(scene);
-  scene.time_step = kStableFractionOfContactTime * scene.contact_time;
+  set_largest_accepted_step(scene);
   return scene;
 }
 

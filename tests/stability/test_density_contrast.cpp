@@ -1,6 +1,6 @@
 // Stability case 6 (docs/STABILITY.md): light and heavy spheres of equal size
 // (density ratio 1:1000) settling together with friction. The time step is
-// the loader's: 0.2 x critical_contact_time(scene), set by the light-light
+// the loader's largest (contact/stable_step.hpp), set by the light-light
 // pair (m* = m_light / 2), 31 times shorter than the heavy-heavy one. A light
 // sphere squeezed between heavy ones is a stiff spring on a tiny mass; the
 // step must hold it.
@@ -39,15 +39,14 @@ Bed contrast_bed(std::size_t count, double width) {
   std::mt19937 rng(23);
   for (ParticleInit& p : scene.particles)
     if (rng() % 2) p.material = light;
-  scene.contact_time = critical_contact_time(scene);
-  scene.time_step = kStableFractionOfContactTime * scene.contact_time;
+  set_largest_accepted_step(scene);
   return bed;
 }
 
 class StabilityDensityContrastTest : public testing::TestWithParam<Backend> {};
 
 // Bounds:
-// * the step is the light pair's: dt = 0.2 t_c(light, light);
+// * the step is the light pair's: the largest the loader accepts;
 // * energy: kinetic + potential never above E0 by 1e-3 of it (damped);
 // * overlap below v sqrt(M / 2k) / R with v = sqrt(2 g H): a heavy sphere
 //   landing from the fill height on a light one lying on the floor drives

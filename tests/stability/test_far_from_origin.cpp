@@ -38,8 +38,7 @@ SceneSpec lattice_bed(double shift, Precision precision, int per_side, int layer
         const Vec3d local((i + 0.5) * 2.2 * kRadius, (j + 0.5) * 2.2 * kRadius, (k + 0.5) * 2.1 * kRadius);
         scene.particles.push_back(particle(id++, kRadius, offset + local));
       }
-  scene.contact_time = critical_contact_time(scene);
-  scene.time_step = kStableFractionOfContactTime * scene.contact_time;
+  set_largest_accepted_step(scene);
   return scene;
 }
 

@@ -45,8 +45,7 @@ TEST_P(StabilityFastWallTest, DrivenWallCompactsBedWithoutEscapes) {
   const double speed = 0.1 * kRadius * std::sqrt(kStiffness / mass);
   scene.walls.back().velocity = {0, 0, -speed};
   add_random_fill(scene, 0, count, kRadius, kRadius, {0, 0, 0}, {width, width, height}, 29);
-  scene.contact_time = critical_contact_time(scene);
-  scene.time_step = kStableFractionOfContactTime * scene.contact_time;
+  set_largest_accepted_step(scene);
 
   Simulation sim(scene, {GetParam()});
   const double travel = height * (1 - 0.25 / 0.45);

@@ -116,8 +116,7 @@ TEST_P(StabilityMeshEdgesTest, PouredOntoImpellerThenTurned) {
            ps.end());
   ASSERT_GE(ps.size(), count);
   ps.resize(count);
-  scene.contact_time = critical_contact_time(scene);
-  scene.time_step = kStableFractionOfContactTime * scene.contact_time;
+  set_largest_accepted_step(scene);
 
   Simulation sim(scene, {GetParam()});
   const double mass = stored_sphere_mass(kRadius, kDensity);

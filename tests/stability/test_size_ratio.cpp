@@ -50,8 +50,7 @@ Bed mixed_bed(int ratio, const BedShape& shape) {
   // one crushes it like a stiff spring of its own inertia (see below).
   add_random_fill(scene, 0, shape.large, large, large, lo, {width, width, 2.0001 * large}, 3);
   add_random_fill(scene, 0, small_count, kSmall, kSmall, lo, hi, 5);
-  scene.contact_time = critical_contact_time(scene);
-  scene.time_step = kStableFractionOfContactTime * scene.contact_time;
+  set_largest_accepted_step(scene);
   return bed;
 }
 

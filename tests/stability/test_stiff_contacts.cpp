@@ -1,8 +1,8 @@
 // Stability case 1 (docs/STABILITY.md): a dense bed settling with friction at
-// the largest time step the loader accepts, time_step =
-// kStableFractionOfContactTime x the shortest contact time. In a dense bed a
-// sphere pressed by many neighbours sees a stiffer spring than the lone
-// contact t_c is computed for; the margin of the 0.2 fraction must cover it.
+// the largest time step the loader accepts (contact/stable_step.hpp). In a
+// dense bed a sphere pressed by many neighbours sees a stiffer spring than
+// the lone contact t_c is computed for; the limit's dense-bed modes must
+// cover it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -35,8 +35,7 @@ Bed settling_bed(std::size_t count, double width) {
   scene.domain_max = {width + 0.001, width + 0.001, bed.fill_height + 0.003};
   scene.walls = box_walls({0, 0, 0}, {width, width, bed.fill_height + 0.002});
   add_random_fill(scene, 0, count, 0.9 * kRadius, 1.1 * kRadius, {0, 0, 0}, {width, width, bed.fill_height}, 11);
-  scene.contact_time = critical_contact_time(scene);
-  scene.time_step = kStableFractionOfContactTime * scene.contact_time;
+  set_largest_accepted_step(scene);
   return bed;
 }
 
