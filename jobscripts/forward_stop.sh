@@ -6,11 +6,19 @@
 # SIGTERM only after odls_base_sigkill_timeout seconds (default 1), kill the
 # ranks after as many again, and exit with 1 whatever the ranks return.
 #   jobscripts/forward_stop.sh mpirun -np 4 build/src/grainstorm run scene.yaml
+# Some Open MPI builds do not forward SIGUSR1 (seen: Ubuntu 24.04's 4.1.6), so
+# the ranks mpirun started on this host (its children) get SIGUSR1 directly
+# as well; a rank that hears it twice stops once. Ranks on other hosts need
+# mpirun's forwarding (or srun, which passes signals to every task).
 # Exits with the command's own code.
 set -uo pipefail
 "$@" &
 pid=$!
-trap 'kill -USR1 $pid 2>/dev/null' TERM USR1 INT
+stop() {
+  kill -USR1 $pid 2>/dev/null
+  pkill -USR1 -P $pid 2>/dev/null
+}
+trap stop TERM USR1 INT
 # `wait` returns early (with 128 + signal) when a trapped signal arrives:
 # wait again until the command itself has ended.
 while true; do
