@@ -1,5 +1,5 @@
 // Oblique impact of a sphere on a rigid plane in the gross-sliding regime
-// (Chung & Ooi 2011, test 6: alumina, |v| = 3.9 m/s, mu = 0.092), both
+// (Chung & Ooi 2011, test 4: alumina, |v| = 3.9 m/s, mu = 0.092), both
 // models, restitution 0.3 to 1.
 //
 // Rigid-body analysis: while the contact point slides, the friction force is
