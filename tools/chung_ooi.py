@@ -440,13 +440,18 @@ class Table:
             print(line(r))
 
 
-def analyse_hertz(number, imps, files, table):
-    snaps = [read_csv(f) for f in files]
+def with_ids(imps):
+    """Each impact with the ids of its sphere and of its partner sphere (None
+    against the plane), in the order the scene lists them."""
     ids = 0
     for imp in imps:
-        i1 = ids
-        i2 = ids + 1 if imp.partner else None
+        yield imp, ids, (ids + 1 if imp.partner else None)
         ids += 2 if imp.partner else 1
+
+
+def analyse_hertz(number, imps, files, table):
+    snaps = [read_csv(f) for f in files]
+    for imp, i1, i2 in with_ids(imps):
         m1, _, R1, _, m2, _, R2, _ = bodies(imp)
         n = normal(imp)
 
@@ -490,11 +495,7 @@ def analyse_hertz(number, imps, files, table):
 def analyse_oblique(number, imps, files, table):
     _, first = read_csv(files[0])
     _, last = read_csv(files[-1])
-    ids = 0
-    for imp in imps:
-        i1 = ids
-        i2 = ids + 1 if imp.partner else None
-        ids += 2 if imp.partner else 1
+    for imp, i1, i2 in with_ids(imps):
         m1, I1, R1, _, m2, _, R2, _ = bodies(imp)
         n = normal(imp)
         v1, w1 = V(first[i1], "v"), V(first[i1], "w")
