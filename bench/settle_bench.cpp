@@ -13,7 +13,10 @@
 //                [--effects none|friction|rolling|cohesion] [--model linear|hertz]
 //                [--mesh impeller]   (the seed's impeller turning at 30 rpm in the bed)
 //                [--skin S]          (CPU Verlet list skin in largest diameters, default 0.1)
+//                [--digest yes]      (then print the final state's digest: the same for any build
+//                                     that computes the same bits)
 #include <chrono>
+#include <cinttypes>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -23,6 +26,7 @@
 #include "backend/memory.hpp"
 #include "contact/contact_time.hpp"
 #include "engine/simulation.hpp"
+#include "io/state_digest.hpp"
 #include "walls/impeller.hpp"
 #include "walls/mesh.hpp"
 
@@ -35,6 +39,7 @@ struct Options {
   unsigned effects = gs::kFriction;
   gs::ContactModel model = gs::ContactModel::linear;
   bool mesh = false;  // the seed's impeller turning at 30 rpm in the bed
+  bool digest = false;  // print the final state's digest (io/state_digest.hpp) after the timing
   gs::RunOptions run{gs::default_backend()};  // backend and Verlet skin
 };
 
@@ -65,6 +70,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--effects") o.effects = parse_effects(v);
     else if (a == "--model") o.model = v == "hertz" ? gs::ContactModel::hertz_mindlin : gs::ContactModel::linear;
     else if (a == "--mesh") o.mesh = v == "impeller";
+    else if (a == "--digest") o.digest = v == "yes";
     else if (a == "--skin") o.run.verlet_skin = std::stod(v);
     else throw std::invalid_argument("unknown option " + a);
   }
@@ -166,6 +172,7 @@ int main(int argc, char** argv) {
                 gs::precision_name(o.precision), o.effects, o.model == gs::ContactModel::linear ? "linear" : "hertz",
                 o.steps, wall, rate, bytes, double(sim.device_bytes()) / n, t.integrate, t.neighbours, t.forces,
                 contacts);
+    if (o.digest) std::printf("state_digest=0x%016" PRIx64 "\n", gs::state_digest(sim.snapshot(), sim.history()));
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "settle_bench: %s\n", e.what());

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/particle_snapshot.hpp"
 #include "engine/rank_exchange.hpp"
 #include "engine/step_kernels.hpp"
 #include "scene/scene.hpp"
@@ -17,28 +18,6 @@ namespace gs {
 // A run stopped by a physical or numerical fault: names step, particle, cause.
 struct SimulationFault : std::runtime_error {
   using std::runtime_error::runtime_error;
-};
-
-// Owned particles on the host, sorted by id.
-struct ParticleSnapshot {
-  double time = 0;
-  long long step = 0;
-  std::vector<ParticleId> id;
-  std::vector<std::uint8_t> material, marker;
-  std::vector<float> radius, mass, inertia;
-  std::vector<Vec3d> position, velocity, angular_velocity, force, torque;
-  std::vector<Quaternion> orientation;
-  std::vector<std::uint16_t> contacts;  // occupied history slots; empty without history
-  std::size_t size() const { return id.size(); }
-};
-
-// The state a run continues from (a checkpoint, read by io/): every particle
-// of the run with its history, and the forces of the last step.
-struct RestartState {
-  long long step = 0;
-  double time = 0;
-  ParticleRecords particles;
-  std::vector<Vec3d> force, torque;  // in `particles` order
 };
 
 struct RunOptions {

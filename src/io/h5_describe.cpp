@@ -9,6 +9,7 @@
 
 #include "io/checkpoint.hpp"
 #include "io/h5_io.hpp"
+#include "io/state_digest.hpp"
 
 namespace gs {
 namespace {
@@ -114,8 +115,11 @@ H5Description describe_h5(const std::string& path) {
   bool damaged = false;
   if (checkpoint) {
     try {
-      read_checkpoint(path);
+      const Checkpoint c = read_checkpoint(path);
       line(out, "integrity", "complete, checksum matches");
+      char digest[24];
+      std::snprintf(digest, sizeof(digest), "0x%016" PRIx64, state_digest(c.particles, c.history));
+      line(out, "state digest", std::string(digest) + " (every field and spring, by particle id)");
     } catch (const CheckpointError& e) {
       line(out, "integrity", std::string("DAMAGED: ") + e.what());
       damaged = true;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cinttypes>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -14,6 +15,7 @@
 #include "comm/domain_exchange.hpp"
 #include "comm/records_codec.hpp"
 #include "comm/snapshot_gather.hpp"
+#include "io/state_digest.hpp"
 #include "scene/generators.hpp"
 #include "support/support.hpp"
 
@@ -89,6 +91,9 @@ void expect_rank_independent(const SceneSpec& scene, long long steps, RunOptions
   const ContactMap many_contacts = gathered_contacts(many);
   if (world().rank() != 0) return;
   const ParticleSnapshot ref = one.snapshot();
+  // The one-rank state's digest, for comparing builds (a refactor must not change it).
+  std::printf("[ digest   ] %s: 0x%016" PRIx64 "\n", ::testing::UnitTest::GetInstance()->current_test_info()->name(),
+              state_digest(ref, one.history()));
   ASSERT_EQ(all.size(), scene.particles.size()) << "particles lost or duplicated";
   EXPECT_TRUE(same_bits(all.id, ref.id));
   EXPECT_TRUE(same_bits(all.position, ref.position)) << exchange->describe();

@@ -1,0 +1,33 @@
+#pragma once
+// Particles on the host as output, analysis and restarts see them: what the
+// engine hands to the layers above it, so that they need not know the engine.
+#include <cstdint>
+#include <vector>
+
+#include "core/particle_records.hpp"
+
+namespace gs {
+
+// Owned particles on the host, sorted by id.
+struct ParticleSnapshot {
+  double time = 0;
+  long long step = 0;
+  std::vector<ParticleId> id;
+  std::vector<std::uint8_t> material, marker;
+  std::vector<float> radius, mass, inertia;
+  std::vector<Vec3d> position, velocity, angular_velocity, force, torque;
+  std::vector<Quaternion> orientation;
+  std::vector<std::uint16_t> contacts;  // occupied history slots; empty without history
+  std::size_t size() const { return id.size(); }
+};
+
+// The state a run continues from (a checkpoint, read by io/): every particle
+// of the run with its history, and the forces of the last step.
+struct RestartState {
+  long long step = 0;
+  double time = 0;
+  ParticleRecords particles;
+  std::vector<Vec3d> force, torque;  // in `particles` order
+};
+
+}  // namespace gs
