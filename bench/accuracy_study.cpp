@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "contact/contact_time.hpp"
+#include "scene/scene_time_step.hpp"
 #include "engine/simulation.hpp"
 #include "scene/generators.hpp"
 

@@ -5,7 +5,7 @@ code's treatment of the dashpot and for second-order alternatives.
 An independent re-computation in numpy (no grainstorm binary): the relative
 motion of a head-on pair, which is that of a sphere of the effective mass m*
 on a fixed plane (two equal spheres of mass m: m* = m/2). The overlap x obeys
-m* x'' = -f, with the clamped normal laws of src/contact/normal_force.hpp:
+m* x'' = -f, with the clamped normal laws of src/contact/models/:
 
   linear  f = max(0, k x + 2 zeta sqrt(m* k) x')
   Hertz   f = max(0, 4/3 E* sqrt(R*) x^1.5 + 2 sqrt(5/6) zeta sqrt(S_n m*) x'),

@@ -24,7 +24,8 @@
 #include <string>
 
 #include "backend/memory.hpp"
-#include "contact/contact_time.hpp"
+#include "scene/scene_time_step.hpp"
+#include "contact/contact_models.hpp"
 #include "engine/simulation.hpp"
 #include "io/state_digest.hpp"
 #include "walls/impeller.hpp"
@@ -159,7 +160,7 @@ int main(int argc, char** argv) {
     const gs::StepTimings t = sim.timings();
     // What the timed steps ended with: the bed loosens as it runs (see the top).
     double contacts = -1;
-    if (gs::uses_history(o.effects)) {
+    if (gs::keeps_history(o.model, o.effects)) {
       const gs::ParticleSnapshot end = sim.snapshot();
       contacts = 0;
       for (std::uint16_t c : end.contacts) contacts += c;

@@ -20,9 +20,8 @@ MessageHeader read_header(const Bytes& b, int from) {
   const std::string bad = "a particle message from rank " + std::to_string(from) + " is corrupt";
   if (b.size() < sizeof(h)) throw std::runtime_error(bad);
   std::memcpy(&h, b.data(), sizeof(h));
-  const bool springs_ok = h.spring_bytes == 0 || h.spring_bytes == int(sizeof(Vec3<float>)) ||
-                          h.spring_bytes == int(sizeof(Vec3d));
-  if (h.check != kMessageCheck || h.slots < 0 || h.slots > kMaxContactSlots || !springs_ok || h.count == 0 ||
+  const bool reals_ok = h.real_bytes == 0 || h.real_bytes == int(sizeof(float)) || h.real_bytes == int(sizeof(double));
+  if (h.check != kMessageCheck || h.slots < 0 || h.slots > kMaxContactSlots || !reals_ok || h.count == 0 ||
       h.count > std::uint64_t(INT32_MAX))
     throw std::runtime_error(bad);
   return h;

@@ -46,42 +46,22 @@ void extend(std::vector<T>& a, const std::vector<T>& b) {
 
 void encode_records(const ParticleRecords& r, Bytes& out) {
   out.clear();
-  put(out, r.id);
-  put(out, r.material);
-  put(out, r.marker);
-  put(out, r.radius);
-  put(out, r.mass);
-  put(out, r.inertia);
-  put(out, r.position);
-  put(out, r.velocity);
-  put(out, r.angular_velocity);
-  put(out, r.orientation);
+  for_each_particle_field(r, [&](const char*, const auto& field) { put(out, field); });
   put(out, std::vector<std::int32_t>{r.history.slots});
   put(out, r.history.partner);
-  put(out, r.history.tangential);
-  put(out, r.history.rolling);
+  for_each_history_field(r.history, [&](const char*, unsigned, const auto& field) { put(out, field); });
 }
 
 ParticleRecords decode_records(const Bytes& in) {
   ParticleRecords r;
   if (in.empty()) return r;
   Reader read(in);
-  read.get(r.id);
-  read.get(r.material);
-  read.get(r.marker);
-  read.get(r.radius);
-  read.get(r.mass);
-  read.get(r.inertia);
-  read.get(r.position);
-  read.get(r.velocity);
-  read.get(r.angular_velocity);
-  read.get(r.orientation);
+  for_each_particle_field(r, [&](const char*, auto& field) { read.get(field); });
   std::vector<std::int32_t> slots;
   read.get(slots);
   r.history.slots = slots.empty() ? 0 : slots[0];
   read.get(r.history.partner);
-  read.get(r.history.tangential);
-  read.get(r.history.rolling);
+  for_each_history_field(r.history, [&](const char*, unsigned, auto& field) { read.get(field); });
   if (!read.done()) throw std::runtime_error("particle message has trailing bytes");
   return r;
 }
@@ -90,19 +70,11 @@ void append_records(ParticleRecords& into, const ParticleRecords& more) {
   if (more.size() == 0) return;
   if (into.size() == 0) into.history.slots = more.history.slots;
   if (into.history.slots != more.history.slots) throw std::logic_error("appending records with other history slots");
-  extend(into.id, more.id);
-  extend(into.material, more.material);
-  extend(into.marker, more.marker);
-  extend(into.radius, more.radius);
-  extend(into.mass, more.mass);
-  extend(into.inertia, more.inertia);
-  extend(into.position, more.position);
-  extend(into.velocity, more.velocity);
-  extend(into.angular_velocity, more.angular_velocity);
-  extend(into.orientation, more.orientation);
+  for_each_particle_field(into, more, [](const char*, auto& to, const auto& from) { extend(to, from); });
   extend(into.history.partner, more.history.partner);
-  extend(into.history.tangential, more.history.tangential);
-  extend(into.history.rolling, more.history.rolling);
+  for_each_history_field(into.history, more.history, [](const char*, unsigned, auto& to, const auto& from) {
+    extend(to, from);
+  });
 }
 
 }  // namespace gs

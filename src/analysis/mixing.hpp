@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "analysis/mixing_spec.hpp"
+#include "scene/mixing_spec.hpp"
 #include "core/vec3.hpp"
 
 namespace gs {

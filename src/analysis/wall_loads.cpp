@@ -3,31 +3,33 @@
 #include <algorithm>
 
 #include "contact/contact_law.hpp"
-#include "engine/step_kernels.hpp"
+#include "contact/contact_models.hpp"
 #include "walls/wall_geometry.hpp"
 
 namespace gs {
 namespace {
 
 // The stored springs of particle `id`'s contact with wall w (zero when none).
-ContactSprings<double> stored_springs(const ParticleRecords& on_walls, ParticleId id, int w) {
-  ContactSprings<double> springs;
+ContactState<double> stored_state(const ParticleRecords& on_walls, ParticleId id, int w) {
+  ContactState<double> state;
   const auto at = std::lower_bound(on_walls.id.begin(), on_walls.id.end(), id);
-  if (at == on_walls.id.end() || *at != id) return springs;
+  if (at == on_walls.id.end() || *at != id) return state;
   const HostHistory& h = on_walls.history;
   const std::size_t k = std::size_t(h.slots), i = std::size_t(at - on_walls.id.begin());
   for (std::size_t s = 0; s < k; ++s) {
     if (h.partner[i * k + s] != kWallPartnerBase + ParticleId(w)) continue;
-    if (!h.tangential.empty()) springs.tangential = h.tangential[i * k + s];
-    if (!h.rolling.empty()) springs.rolling = h.rolling[i * k + s];
+    for_each_history_field(h, state, [&](const char*, unsigned, const auto& rows, auto& value) {
+      if (!rows.empty()) value = rows[i * k + s];
+    });
   }
-  return springs;
+  return state;
 }
 
-template <ContactModel Model, unsigned Effects>
+template <class Model, unsigned Effects>
 std::vector<MeshLoad> loads(const SceneSpec& scene, const std::vector<Wall>& walls, const ParticleSnapshot& s,
                             const ParticleRecords& on_walls) {
-  const PairTableHost table = make_pair_table(scene);
+  const std::vector<PairParams<double, Model>> table = make_pair_table<double, Model>(scene.materials, scene.pairs);
+  const std::size_t n = scene.materials.size();
   std::vector<MeshLoad> out(walls.size());
   for (std::size_t i = 0; i < s.size(); ++i)
     for (std::size_t w = 0; w < walls.size(); ++w) {
@@ -41,9 +43,9 @@ std::vector<MeshLoad> loads(const SceneSpec& scene, const std::vector<Wall>& wal
       k.angular_velocity = s.angular_velocity[i] - walls[w].angular_velocity;
       k.effective_mass = s.mass[i];
       k.effective_radius = s.radius[i];
-      ContactSprings<double> springs = stored_springs(on_walls, s.id[i], int(w));
+      ContactState<double> state = stored_state(on_walls, s.id[i], int(w));
       const ContactLoad<double> load = contact_load<double, Model, Effects>(
-          pair_params<double>(table, table.at(s.material[i], walls[w].material)), k, springs, 0.0);
+          table[std::size_t(s.material[i]) * n + std::size_t(walls[w].material)], k, state, 0.0);
       // The wall feels the opposite of what the particle feels.
       const Vec3d centre = walls[w].axis_point + walls[w].shift;
       out[w].force -= load.force;
@@ -56,7 +58,7 @@ std::vector<MeshLoad> loads(const SceneSpec& scene, const std::vector<Wall>& wal
   return out;
 }
 
-template <ContactModel Model>
+template <class Model>
 std::vector<MeshLoad> for_effects(const SceneSpec& scene, const std::vector<Wall>& walls, const ParticleSnapshot& s,
                                   const ParticleRecords& on_walls) {
   switch (scene.effects & kAllEffects) {
@@ -75,8 +77,9 @@ std::vector<MeshLoad> for_effects(const SceneSpec& scene, const std::vector<Wall
 
 std::vector<MeshLoad> wall_loads(const SceneSpec& scene, const std::vector<Wall>& walls, const ParticleSnapshot& s,
                                  const ParticleRecords& on_walls) {
-  if (scene.model == ContactModel::linear) return for_effects<ContactModel::linear>(scene, walls, s, on_walls);
-  return for_effects<ContactModel::hertz_mindlin>(scene, walls, s, on_walls);
+  return with_contact_model(scene.model, [&](auto model) {
+    return for_effects<decltype(model)>(scene, walls, s, on_walls);
+  });
 }
 
 }  // namespace gs

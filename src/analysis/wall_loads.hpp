@@ -8,7 +8,8 @@
 // touches the damping term). Summed in particle-id order: deterministic.
 #include <vector>
 
-#include "engine/simulation.hpp"
+#include "core/particle_snapshot.hpp"
+#include "scene/scene.hpp"
 #include "walls/mesh.hpp"
 
 namespace gs {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "analysis/mixing.hpp"
+#include "contact/contact_models.hpp"
 #include "analysis/wall_loads.hpp"
 #include "comm/rank_agreement.hpp"
 #include "comm/snapshot_gather.hpp"
@@ -31,8 +32,8 @@ RunOutput::RunOutput(const SceneSpec& scene, const std::string& directory, Trans
                      std::uint64_t scene_hash)
     : scene_(scene), directory_(directory), transport_(transport), scene_hash_(scene_hash) {
   fields_ = scene.output.fields.empty() ? default_snapshot_fields() : parse_snapshot_fields(scene.output.fields);
-  if (fields_.has(SnapshotField::contact_count) && !uses_history(scene.effects))
-    throw std::invalid_argument("output.fields: contact_count needs friction or rolling resistance (contact history)");
+  if (fields_.has(SnapshotField::contact_count) && !keeps_history(scene.model, scene.effects))
+    throw std::invalid_argument("output.fields: contact_count needs a contact history (friction, rolling resistance or a hysteretic contact model)");
   if (transport_.rank() != 0) return;
   std::filesystem::create_directories(directory_);
   log_ = open_for_writing(directory_ + "/run.log", "a");
@@ -94,7 +95,7 @@ void RunOutput::snapshot(const Simulation& sim) {
     mesh_load.insert(mesh_load.end(), {l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y, l.torque.z});
   if (!mesh_load.empty()) transport_.sum(mesh_load);  // every rank has the same meshes
   const ParticleSnapshot s = gather_snapshot(transport_, sim.snapshot());
-  const bool need_history = uses_history(scene_.effects);
+  const bool need_history = keeps_history(scene_.model, scene_.effects);
   const ParticleRecords on_walls =
       need_history ? gather_history_records(transport_, sim.wall_contact_history()) : ParticleRecords();
   written_by_rank_0([&] { write_snapshot_files(sim, s, on_walls, mesh_load); });
@@ -102,7 +103,7 @@ void RunOutput::snapshot(const Simulation& sim) {
 
 void RunOutput::write_snapshot_files(const Simulation& sim, const ParticleSnapshot& s, const ParticleRecords& on_walls,
                                      const std::vector<double>& mesh_load) {
-  const bool need_history = uses_history(scene_.effects);
+  const bool need_history = keeps_history(scene_.model, scene_.effects);
   const std::vector<std::uint16_t> contacts = need_history ? s.contacts : std::vector<std::uint16_t>(s.size(), 0);
   if (scene_.output.format == "csv") {
     write_particles_csv(directory_ + "/" + snapshot_file_name(s.step), s);
@@ -208,7 +209,7 @@ void RunOutput::fault_snapshot(const Simulation& sim) {
     m.scene_path = scene_.path;
     m.wall_names = scene_.wall_names;
     SnapshotFields fields = all_particle_fields();
-    if (uses_history(scene_.effects)) {
+    if (keeps_history(scene_.model, scene_.effects)) {
       fields.add(SnapshotField::contact_count);
       m.contact_count = s.contacts;
     }

@@ -1,9 +1,19 @@
 #pragma once
-// The full contact law of one contact, as seen from particle i: normal force,
-// optional cohesion, tangential friction with history and rolling resistance.
-// The same function serves particle-particle and particle-wall contacts; what a
-// scene does not use is removed at compile time through `Effects`.
-#include "contact/normal_force.hpp"
+// The full contact law of one contact, as seen from particle i: the model's
+// normal force, optional cohesion, tangential friction with history and
+// rolling resistance. The same function serves particle-particle and
+// particle-wall contacts; what a scene does not use is removed at compile
+// time through `Model` and `Effects`.
+//
+// Sign convention: a positive normal force is repulsive, along the normal n
+// that points from the partner j to particle i; `overlap_rate` is
+// d(overlap)/dt, positive while the spheres approach. Every normal law is
+// clamped at zero (a separating contact whose dashpot would outweigh its
+// spring does not pull: the surfaces part before the overlap closes);
+// attraction comes only from cohesion, subtracted after the clamp. The clamp
+// changes the restitution a damping ratio gives; contact/restitution.hpp
+// derives zeta for the clamped laws.
+#include "contact/contact_model.hpp"
 #include "contact/tangential_spring.hpp"
 #include "core/types.hpp"
 
@@ -20,48 +30,35 @@ struct ContactKinematics {
   Real lever;                  // distance from the centre of i to the contact point
 };
 
-// Spring history of one contact; unused members are never touched.
-template <class Real>
-struct ContactSprings {
-  Vec3<Real> tangential;  // elastic tangential force f_e [N]
-  Vec3<Real> rolling;     // rolling displacement xi_r [m]
-};
-
 template <class Real>
 struct ContactLoad {
   Vec3<Real> force;   // on particle i
   Vec3<Real> torque;  // on particle i, about its centre
 };
 
-template <class Real, ContactModel Model, unsigned Effects>
-GS_HD GS_INLINE ContactLoad<Real> contact_load(const PairParams<Real>& p, const ContactKinematics<Real>& c,
-                                               ContactSprings<Real>& springs, Real dt) {
+// Cohesion (simplified JKR): an attraction proportional to the contact area
+// pi a^2 = pi R* delta, scaled by the cohesion energy density k_c.
+template <class Real>
+GS_HD GS_INLINE Real cohesion_force(Real energy_density, Real overlap, Real effective_radius) {
+  return energy_density * Real(3.14159265358979323846) * effective_radius * overlap;
+}
+
+template <class Real, class Model, unsigned Effects>
+GS_HD GS_INLINE ContactLoad<Real> contact_load(const PairParams<Real, Model>& p, const ContactKinematics<Real>& c,
+                                               ContactState<Real>& state, Real dt) {
   const Real normal_speed = dot(c.velocity, c.normal);
   const Real overlap_rate = -normal_speed;
-  Real normal_force;  // repulsive, >= 0: the clamped spring-dashpot
-  [[maybe_unused]] Real root_mass = 0;           // linear
-  [[maybe_unused]] HertzContact<Real> hertz{};  // Hertz-Mindlin
-  if constexpr (Model == ContactModel::linear) {
-    root_mass = std::sqrt(c.effective_mass);
-    normal_force = linear_normal_force(p, c.overlap, overlap_rate, root_mass);
-  } else {
-    hertz = hertz_contact(c.overlap, c.effective_mass, c.effective_radius);
-    normal_force = hertz_normal_force(p, c.overlap, overlap_rate, hertz);
-  }
+  const auto local = Model::local(p.model, c.overlap, c.effective_mass, c.effective_radius);
+  const Real normal_force = Model::normal_force(p.model, c.overlap, overlap_rate, local, state);  // >= 0
   ContactLoad<Real> load;
   Real total_normal = normal_force;  // cohesion, the only attraction, comes after the clamp
-  if constexpr ((Effects & kCohesion) != 0) total_normal -= cohesion_force(p, c.overlap, c.effective_radius);
+  if constexpr ((Effects & kCohesion) != 0) total_normal -= cohesion_force(p.cohesion, c.overlap, c.effective_radius);
   load.force = c.normal * total_normal;
 
   if constexpr ((Effects & kFriction) != 0) {
     const Vec3<Real> tangential_velocity = mul_add(c.normal, -normal_speed, c.velocity);
-    TangentialCoefficients<Real> t;
-    if constexpr (Model == ContactModel::linear) {
-      t = linear_tangential_coefficients(p, root_mass);
-    } else {
-      t = mindlin_tangential_coefficients(p, hertz);
-    }
-    const Vec3<Real> f_t = tangential_force(springs.tangential, c.normal, tangential_velocity, t.stiffness,
+    const TangentialCoefficients<Real> t = Model::tangential(p.model, local);
+    const Vec3<Real> f_t = tangential_force(state.tangential, c.normal, tangential_velocity, t.stiffness,
                                             t.damping, p.friction, normal_force, dt);
     load.force += f_t;
     load.torque = cross(c.normal * (-c.lever), f_t);
@@ -69,7 +66,7 @@ GS_HD GS_INLINE ContactLoad<Real> contact_load(const PairParams<Real>& p, const 
   if constexpr ((Effects & kRollingResistance) != 0) {
     const Vec3<Real> spin = c.normal * dot(c.angular_velocity, c.normal);  // twisting is not resisted
     const Vec3<Real> rolling_velocity = (c.angular_velocity - spin) * c.effective_radius;
-    load.torque += rolling_torque(springs.rolling, c.normal, rolling_velocity, p.stiffness_rolling,
+    load.torque += rolling_torque(state.rolling, c.normal, rolling_velocity, p.stiffness_rolling,
                                   p.rolling_friction, normal_force, c.effective_radius, dt);
   }
   return load;

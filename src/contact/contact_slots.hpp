@@ -9,15 +9,18 @@
 
 namespace gs {
 
-template <class Real, unsigned Effects>
+// Kept: the history fields of the run (HistoryField bits,
+// contact/contact_models.hpp history_fields_kept); none: no history at all.
+template <class Real, unsigned Kept>
 struct SlotTable {
   ParticleId* partner;
-  Vec3<Real>* tangential;  // elastic tangential force [N]
-  Vec3<Real>* rolling;     // rolling displacement [m]
+#define GS_DECLARE_FIELD(name, value, bit) value<Real>* name;
+  GS_HISTORY_FIELDS(GS_DECLARE_FIELD)
+#undef GS_DECLARE_FIELD
   int slots;
   HistoryStrides strides;
 
-  static constexpr bool kActive = (Effects & (kFriction | kRollingResistance)) != 0;
+  static constexpr bool kActive = Kept != 0;
 
   // Slot of the contact (i, partner_id): the existing one, or a free one that
   // starts from zero springs. -1 when every slot is taken.
@@ -32,8 +35,10 @@ struct SlotTable {
     if (free_slot >= 0) {
       const std::size_t k = strides.at(free_slot, std::size_t(i));
       partner[k] = partner_id;
-      if constexpr ((Effects & kFriction) != 0) tangential[k] = Vec3<Real>();
-      if constexpr ((Effects & kRollingResistance) != 0) rolling[k] = Vec3<Real>();
+#define GS_CLEAR_FIELD(name, value, bit) \
+  if constexpr ((Kept & (bit)) != 0) name[k] = value<Real>{};
+      GS_HISTORY_FIELDS(GS_CLEAR_FIELD)
+#undef GS_CLEAR_FIELD
     }
     return free_slot;
   }
@@ -62,18 +67,22 @@ struct SlotTable {
     return -1;
   }
 
-  GS_HD ContactSprings<Real> load(Index i, int s) const {
-    ContactSprings<Real> springs;
+  GS_HD ContactState<Real> load(Index i, int s) const {
+    ContactState<Real> state;
     const std::size_t k = strides.at(s, std::size_t(i));
-    if constexpr ((Effects & kFriction) != 0) springs.tangential = tangential[k];
-    if constexpr ((Effects & kRollingResistance) != 0) springs.rolling = rolling[k];
-    return springs;
+#define GS_LOAD_FIELD(name, value, bit) \
+  if constexpr ((Kept & (bit)) != 0) state.name = name[k];
+    GS_HISTORY_FIELDS(GS_LOAD_FIELD)
+#undef GS_LOAD_FIELD
+    return state;
   }
 
-  GS_HD void store(Index i, int s, const ContactSprings<Real>& springs) const {
+  GS_HD void store(Index i, int s, const ContactState<Real>& state) const {
     const std::size_t k = strides.at(s, std::size_t(i));
-    if constexpr ((Effects & kFriction) != 0) tangential[k] = springs.tangential;
-    if constexpr ((Effects & kRollingResistance) != 0) rolling[k] = springs.rolling;
+#define GS_STORE_FIELD(name, value, bit) \
+  if constexpr ((Kept & (bit)) != 0) name[k] = state.name;
+    GS_HISTORY_FIELDS(GS_STORE_FIELD)
+#undef GS_STORE_FIELD
   }
 
   // Contacts not seen this step have ended: their slots are freed.

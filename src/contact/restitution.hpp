@@ -1,6 +1,6 @@
 #pragma once
 // The damping ratio a normal restitution coefficient asks for, for the
-// clamped spring-dashpots of contact/normal_force.hpp.
+// clamped spring-dashpots of contact/models/ (linear and Hertz-Mindlin).
 #include "core/types.hpp"
 
 namespace gs {
@@ -13,7 +13,7 @@ namespace gs {
 //     e = exp(-2 zeta arccos(zeta) / sqrt(1 - zeta^2))      zeta < 1,
 //     e = exp(-2)                                           zeta = 1,
 //     e = exp(-2 zeta arccosh(zeta) / sqrt(zeta^2 - 1))     zeta > 1.
-// The Hertz contact with the Tsuji-type dashpot of normal_force.hpp gives the
+// The Hertz contact with the Tsuji-type dashpot of contact/models/hertz_mindlin.hpp gives the
 // same e: in units of the impact it reads y'' = -(y^1.5 + sqrt(5) zeta y^0.25 y'),
 // and with w = y^1.25 its phase-plane equation v dv/dw = -4/5 (w + sqrt(5) zeta v)
 // is that of the linear oscillator with the same zeta, from the same start

@@ -4,6 +4,7 @@
 #include <limits>
 #include <vector>
 
+#include "contact/contact_models.hpp"
 #include "contact/contact_time.hpp"
 #include "contact/restitution.hpp"
 
@@ -21,11 +22,11 @@ struct Body {
   bool moves() const { return inverse_mass > 0; }
 };
 
-std::vector<Body> smallest_bodies(const SceneSpec& s) {
+std::vector<Body> smallest_bodies(const ContactScene& s) {
   std::vector<Body> bodies(s.materials.size());
-  for (const ParticleInit& p : s.particles) bodies[p.material].radius = std::min(bodies[p.material].radius, p.radius);
   for (std::size_t m = 0; m < bodies.size(); ++m) {
     Body& b = bodies[m];
+    b.radius = s.smallest_radius[m];
     if (!std::isfinite(b.radius)) continue;
     const double mass = sphere_mass(b.radius, s.materials[m].density);
     b.inverse_mass = 1 / mass;
@@ -34,28 +35,11 @@ std::vector<Body> smallest_bodies(const SceneSpec& s) {
   return bodies;
 }
 
-// The springs of one pair and their dashpots' beta = gamma / k.
-struct PairSprings {
-  double normal, tangential, rolling;
-  double beta_normal, beta_tangential;
-};
-
-PairSprings springs_of(const SceneSpec& s, const PairSpec& p, double effective_mass, double effective_radius) {
-  const double zeta = damping_ratio(s.model, p.restitution);
-  if (s.model == ContactModel::linear)
-    return {p.stiffness_normal, p.stiffness_tangential, p.stiffness_rolling,
-            2 * zeta * std::sqrt(effective_mass / p.stiffness_normal),
-            2 * zeta * std::sqrt(effective_mass / p.stiffness_tangential)};
-  // Tangent stiffnesses S_n = 2 E* a and S_t = 8 G* a at the reference overlap,
-  // and the Tsuji-type dashpots 2 sqrt(5/6) zeta sqrt(S m*) (contact/normal_force.hpp).
-  const MaterialSpec& a = s.materials[p.material_a];
-  const MaterialSpec& b = s.materials[p.material_b];
-  const double contact_radius = effective_radius * std::sqrt(kHertzReferenceOverlap);
-  const double normal = 2 * effective_youngs_modulus(a, b) * contact_radius;
-  const double tangential = 8 * effective_shear_modulus(a, b) * contact_radius;
-  const double tsuji = 2 * std::sqrt(5.0 / 6.0) * zeta;
-  return {normal, tangential, p.stiffness_rolling, tsuji * std::sqrt(effective_mass / normal),
-          tsuji * std::sqrt(effective_mass / tangential)};
+DenseBedSprings springs_of(const ContactScene& s, const PairSpec& p, double effective_mass, double effective_radius) {
+  return with_contact_model(s.model, [&](auto model) {
+    return decltype(model)::dense_bed_springs(s.materials[p.material_a], s.materials[p.material_b], p, effective_mass,
+                                              effective_radius);
+  });
 }
 
 struct Candidate {
@@ -64,13 +48,13 @@ struct Candidate {
 };
 
 // The limits of one pair's springs in a dense bed (the header's lambdas).
-std::vector<Candidate> pair_limits(const SceneSpec& s, const PairSpec& p, const Body& a, const Body& b) {
+std::vector<Candidate> pair_limits(const ContactScene& s, const PairSpec& p, const Body& a, const Body& b) {
   const double z = kDenseBedCoordination;
   const double inverse_mass = a.inverse_mass + b.inverse_mass;
   const double lever = a.radius * a.radius * a.inverse_inertia + b.radius * b.radius * b.inverse_inertia;
   const double effective_mass = 1 / inverse_mass;
   const double effective_radius = b.moves() ? a.radius * b.radius / (a.radius + b.radius) : a.radius;
-  const PairSprings k = springs_of(s, p, effective_mass, effective_radius);
+  const DenseBedSprings k = springs_of(s, p, effective_mass, effective_radius);
   std::vector<Candidate> limits;
   limits.push_back({stable_step_of_mode(z / 3 * k.normal * inverse_mass, k.beta_normal), "normal spring"});
   if ((s.effects & kFriction) && p.friction > 0)
@@ -89,7 +73,7 @@ std::vector<Candidate> pair_limits(const SceneSpec& s, const PairSpec& p, const 
 
 double stable_step_of_mode(double lambda, double beta) { return std::sqrt(beta * beta + 4 / lambda) - beta; }
 
-StableStep stable_time_step(const SceneSpec& s) {
+StableStep stable_time_step(const ContactScene& s) {
   const std::vector<Body> bodies = smallest_bodies(s);
   StableStep best{kInf, "no contact can form"};
   for (const PairSpec& p : s.pairs) {

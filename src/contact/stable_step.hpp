@@ -27,7 +27,7 @@
 // Hertz theory itself stops applying).
 #include <string>
 
-#include "scene/scene.hpp"
+#include "contact/contact_scene.hpp"
 
 namespace gs {
 
@@ -47,6 +47,6 @@ double stable_step_of_mode(double lambda, double beta);
 
 // The smallest of the limits of every spring of every pair of materials that
 // can touch, with the smallest particles of each material in the scene.
-StableStep stable_time_step(const SceneSpec& scene);
+StableStep stable_time_step(const ContactScene& scene);
 
 }  // namespace gs

@@ -1,35 +1,28 @@
 #pragma once
-#include "core/hd.hpp"
+// Materials and the contact parameters of pairs of them, as a scene gives
+// them (src/scene reads them; the contact models of src/contact reduce them
+// to what their force laws use).
+#include <string>
 
 namespace gs {
 
-// Contact parameters of one pair of materials, already reduced to what the
-// force laws use. Real is the force precision.
-template <class Real>
-struct PairParams {
-  Real stiffness_normal;      // linear: k_n [N/m]
-  Real stiffness_tangential;  // linear: k_t [N/m]; Hertz-Mindlin: unused (from shear_modulus_eff)
-  Real stiffness_rolling;     // k_r [N/m], rolling spring (both models, constant over a contact)
-  // Dashpots, with zeta >= 0 from the restitution (contact/restitution.hpp,
-  // for the clamped normal force; above 1 for e < exp(-2)): gamma = factor *
-  // sqrt(m_eff) (linear) or factor * sqrt(a m_eff) (Hertz-Mindlin, a =
-  // sqrt(R* delta)). The constant part of the root is taken once per pair of
-  // materials, so a contact takes one square root for both of its dashpots.
-  Real damping_factor_normal;      // linear: 2 zeta sqrt(k_n); Hertz: 2 sqrt(5/6) zeta sqrt(2 E*)
-  Real damping_factor_tangential;  // linear: 2 zeta sqrt(k_t); Mindlin: 2 sqrt(5/6) zeta sqrt(8 G*)
-  Real friction;              // Coulomb coefficient mu
-  Real rolling_friction;      // dimensionless mu_r: rolling torque cap mu_r R_eff f_n
-  Real cohesion;              // cohesion energy density k_c [N/m^2]: f = k_c * contact area
-  Real youngs_modulus_eff;    // Hertz: E* [Pa]
-  Real shear_modulus_eff;     // Hertz: G* [Pa]
+struct MaterialSpec {
+  std::string name;
+  double density = 0;          // [kg/m^3]
+  double youngs_modulus = 0;   // [Pa], Hertz-Mindlin only
+  double poisson_ratio = 0;    // [-], Hertz-Mindlin only
 };
 
-// Read-only view of the symmetric pair table, n_materials^2 entries.
-template <class Real>
-struct PairTable {
-  const PairParams<Real>* params;
-  int n_materials;
-  GS_HD const PairParams<Real>& operator()(int a, int b) const { return params[a * n_materials + b]; }
+// Contact parameters of a pair of materials as written in the scene.
+struct PairSpec {
+  int material_a = 0, material_b = 0;
+  double stiffness_normal = 0;       // linear models [N/m] (the hysteretic one: loading)
+  double stiffness_tangential = 0;   // linear models [N/m]
+  double stiffness_rolling = 0;      // rolling spring [N/m]
+  double restitution = 1;            // normal coefficient of restitution in (0,1]
+  double friction = 0;               // sliding friction mu >= 0
+  double rolling_friction = 0;       // rolling friction mu_r >= 0
+  double cohesion_energy_density = 0;// [N/m^2]
 };
 
 }  // namespace gs

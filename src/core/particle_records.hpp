@@ -6,25 +6,25 @@
 #include <type_traits>
 #include <vector>
 
-#include "core/particle_store.hpp"
+#include "core/particle_fields.hpp"
 
 namespace gs {
 
-// Contact history of particles on the host, in fp64 (exact for fp32 springs):
-// entry (particle p, slot s) at p * slots + s.
+// Contact history of particles on the host, in fp64 (exact for fp32
+// history): entry (particle p, slot s) at p * slots + s. A field the run does
+// not keep is empty.
 struct HostHistory {
   int slots = 0;
   std::vector<ParticleId> partner;
-  std::vector<Vec3d> tangential;  // elastic tangential force [N]; empty unless friction is on
-  std::vector<Vec3d> rolling;     // rolling displacement [m]; empty unless rolling resistance is on
+#define GS_DECLARE_FIELD(name, value, bit) std::vector<value<double>> name;
+  GS_HISTORY_FIELDS(GS_DECLARE_FIELD)
+#undef GS_DECLARE_FIELD
 };
 
 struct ParticleRecords {
-  std::vector<ParticleId> id;
-  std::vector<std::uint8_t> material, marker;
-  std::vector<float> radius, mass, inertia;
-  std::vector<Vec3d> position, velocity, angular_velocity;
-  std::vector<Quaternion> orientation;
+#define GS_DECLARE_FIELD(name, type) std::vector<type> name;
+  GS_PARTICLE_FIELDS(GS_DECLARE_FIELD)
+#undef GS_DECLARE_FIELD
   HostHistory history;  // empty (slots = 0) when not carried
 
   std::size_t size() const { return id.size(); }
@@ -33,17 +33,15 @@ struct ParticleRecords {
 // History row r of the result is row order[r] of h.
 inline HostHistory rows_permuted(const HostHistory& h, const std::vector<std::size_t>& order) {
   const std::size_t k = std::size_t(h.slots);
-  auto rows = [&](const auto& from) {
-    std::decay_t<decltype(from)> to(from.empty() ? 0 : order.size() * k);
+  auto rows = [&](const auto& from, auto& to) {
+    to.assign(from.empty() ? 0 : order.size() * k, {});
     for (std::size_t r = 0; r < order.size() && !from.empty(); ++r)
       for (std::size_t s = 0; s < k; ++s) to[r * k + s] = from[order[r] * k + s];
-    return to;
   };
   HostHistory out;
   out.slots = h.slots;
-  out.partner = rows(h.partner);
-  out.tangential = rows(h.tangential);
-  out.rolling = rows(h.rolling);
+  rows(h.partner, out.partner);
+  for_each_history_field(h, out, [&](const char*, unsigned, const auto& from, auto& to) { rows(from, to); });
   return out;
 }
 

@@ -8,15 +8,15 @@
 
 namespace gs {
 
-// Owned particles on the host, sorted by id.
+// Owned particles on the host, sorted by id: every field of
+// core/particle_fields.hpp, and the last step's forces.
 struct ParticleSnapshot {
   double time = 0;
   long long step = 0;
-  std::vector<ParticleId> id;
-  std::vector<std::uint8_t> material, marker;
-  std::vector<float> radius, mass, inertia;
-  std::vector<Vec3d> position, velocity, angular_velocity, force, torque;
-  std::vector<Quaternion> orientation;
+#define GS_DECLARE_FIELD(name, type) std::vector<type> name;
+  GS_PARTICLE_FIELDS(GS_DECLARE_FIELD)
+#undef GS_DECLARE_FIELD
+  std::vector<Vec3d> force, torque;
   std::vector<std::uint16_t> contacts;  // occupied history slots; empty without history
   std::size_t size() const { return id.size(); }
 };

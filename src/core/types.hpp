@@ -29,7 +29,8 @@ enum Effect : unsigned {
 };
 constexpr unsigned kAllEffects = kFriction | kRollingResistance | kCohesion;
 
-enum class ContactModel { linear, hertz_mindlin };
+// The contact models (contact/contact_models.hpp lists their policy types).
+enum class ContactModel : std::uint8_t { linear, hertz_mindlin, hysteretic_linear };
 // Precision of a run: fp32 forces with fp64 state (the default), fp64
 // forces, or fp32 throughout (positions and velocities rounded to fp32 after
 // every update, as a code that stores them in fp32; docs/PHYSICS.md).
@@ -41,6 +42,7 @@ inline const char* precision_name(Precision p) {
   return p == Precision::fp64 ? "fp64" : p == Precision::fp32 ? "fp32" : "fp32_full";
 }
 
-inline bool uses_history(unsigned effects) { return (effects & (kFriction | kRollingResistance)) != 0; }
+// Whether the effects make contact torques (and keep springs in the history).
+constexpr bool makes_torques(unsigned effects) { return (effects & (kFriction | kRollingResistance)) != 0; }
 
 }  // namespace gs

@@ -6,8 +6,8 @@
 // cell by cell in a fixed order, by ascending id in a cell; ListCandidates:
 // by ascending id), then the walls in scene order, then triangle meshes, their
 // contacts in ascending triangle order of the particle's mesh bin.
+#include "contact/contact_models.hpp"
 #include "contact/contact_slots.hpp"
-#include "core/materials.hpp"
 #include "neighbor/cell_list.hpp"
 #include "neighbor/verlet_list.hpp"
 #include "walls/sphere_triangle.hpp"
@@ -39,7 +39,7 @@ struct SameMeshContact {
   }
 };
 
-template <class Real, ContactModel Model, unsigned Effects, class Candidates = CellCandidates>
+template <class Real, class Model, unsigned Effects, class Candidates = CellCandidates>
 struct ForceKernel {
   // Particles (owned and ghosts)
   const ParticleId* id;
@@ -51,13 +51,13 @@ struct ForceKernel {
   const Vec3d* angular_velocity;
   Candidates candidates;  // contact partners of a particle, in canonical order
   // Interactions
-  PairTable<Real> pairs;
+  PairTable<Real, Model> pairs;
   const Wall* walls;
   const WallScreen* wall_screens;  // per wall: the first, cheap test
   int n_walls;
   MeshView meshes;          // n_triangles == 0: the scene has no mesh, the loop is skipped
   MeshLoad* mesh_load;      // per owned particle x mesh: its load on the mesh; null without meshes
-  SlotTable<Real, Effects> history;
+  SlotTable<Real, history_fields_kept<Model>(Effects)> history;
   // Outputs
   Vec3<Real>* force;
   Vec3<Real>* torque;  // null when no effect makes torques
@@ -65,8 +65,8 @@ struct ForceKernel {
   Fault* fault;
   long long step;
 
-  static constexpr bool kTorque = (Effects & (kFriction | kRollingResistance)) != 0;
-  static constexpr bool kHistory = SlotTable<Real, Effects>::kActive;
+  static constexpr bool kTorque = makes_torques(Effects);
+  static constexpr bool kHistory = history_fields_kept<Model>(Effects) != 0;
   // GPU launch hint: four blocks of 128 threads resident per multiprocessor,
   // which caps the kernel at 128 registers. The mesh path, which most
   // threads never take, had raised the frictional kernel to 132 registers
@@ -220,22 +220,22 @@ struct ForceKernel {
   }
 
   // slot: the contact's history slot when the caller knows it, else kAnySlot.
-  GS_HD GS_INLINE ContactLoad<Real> apply(Index i, ParticleId partner_id, const PairParams<Real>& p,
+  GS_HD GS_INLINE ContactLoad<Real> apply(Index i, ParticleId partner_id, const PairParams<Real, Model>& p,
                                 const ContactKinematics<Real>& k, ContactLoad<Real>& total, unsigned& touched,
                                 int slot = kAnySlot) const {
-    ContactSprings<Real> springs;
+    ContactState<Real> state;
     if constexpr (kHistory) {
       if (slot == kAnySlot) slot = history.find_or_claim(i, partner_id, touched);
       if (slot >= 0) {
         touched |= 1u << slot;
-        springs = history.load(i, slot);
+        state = history.load(i, slot);
       } else {
         report_fault(fault, kFaultSlotsExhausted, id[i], step);
       }
     }
-    const ContactLoad<Real> load = contact_load<Real, Model, Effects>(p, k, springs, dt);
+    const ContactLoad<Real> load = contact_load<Real, Model, Effects>(p, k, state, dt);
     if constexpr (kHistory) {
-      if (slot >= 0) history.store(i, slot, springs);
+      if (slot >= 0) history.store(i, slot, state);
     }
     total.force += load.force;
     if constexpr (kTorque) total.torque += load.torque;

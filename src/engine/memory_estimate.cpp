@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "contact/contact_models.hpp"
+#include "core/particle_fields.hpp"
 #include "neighbor/cell_grid.hpp"
 #include "walls/mesh.hpp"
 
@@ -9,15 +11,20 @@ namespace gs {
 
 MemoryEstimate estimate_memory(const SceneSpec& scene) {
   const double real = fp32_forces(scene.precision) ? 4 : 8;
-  // id, material, marker, radius, mass, inertia, position, velocity, angular velocity, orientation
-  double per = 4 + 1 + 1 + 3 * 4 + 3 * 24 + 16;
+  double per = 0;
+#define GS_ADD_FIELD(name, type) per += sizeof(type);
+  GS_PARTICLE_FIELDS(GS_ADD_FIELD)
+#undef GS_ADD_FIELD
   per += 3 * real;                                        // force
-  const bool torque = uses_history(scene.effects);
-  if (torque) per += 3 * real;                            // torque
-  if (uses_history(scene.effects)) {
-    double slot = 4;                                      // partner id
-    if (scene.effects & kFriction) slot += 3 * real;
-    if (scene.effects & kRollingResistance) slot += 3 * real;
+  if (makes_torques(scene.effects)) per += 3 * real;      // torque
+  const unsigned kept = history_fields_kept(scene.model, scene.effects);
+  if (kept != 0) {
+    double slot = sizeof(ParticleId);                     // partner id
+    const bool wide = real == 8;
+#define GS_ADD_FIELD(name, value, bit) \
+  if (kept & (bit)) slot += wide ? sizeof(value<double>) : sizeof(value<float>);
+    GS_HISTORY_FIELDS(GS_ADD_FIELD)
+#undef GS_ADD_FIELD
     per += slot * scene.contact_slots;
   }
   per += 2 * 8 + 2 * 4;                                   // sort keys and indices, double-buffered

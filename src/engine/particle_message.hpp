@@ -2,53 +2,58 @@
 // One message of particles between ranks, packed by backend kernels into one
 // buffer in backend memory, so that moving it costs one copy (or one NCCL
 // send) instead of one per field. The header travels on the host; the payload
-// holds each field for all particles in turn, every field 8-byte aligned:
-// id, material, marker, radius, mass, inertia, position, velocity, angular
-// velocity, orientation, then the history (slot-major: entry s * count + i):
-// partners, tangential springs, rolling springs, in the force precision.
+// holds each field for all particles in turn, every field 8-byte aligned: the
+// particle fields of core/particle_fields.hpp in their order, then the
+// history (slot-major: entry s * count + i): partners, then each history
+// field the run keeps, in the force precision.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 
-#include "core/particle_store.hpp"
+#include "engine/particle_store.hpp"
 
 namespace gs {
 
 struct MessageHeader {
   std::uint64_t count = 0;     // particles
   std::int32_t slots = 0;      // history slots per particle; 0: no history carried
-  std::int32_t spring_bytes = 0;  // bytes of one spring (sizeof(Vec3<Real>)); 0: no springs
-  std::uint32_t springs = 0;   // bit 0: tangential, bit 1: rolling
+  std::int32_t real_bytes = 0;  // bytes of the history's reals (sizeof(Real)); 0: no history fields
+  std::uint32_t fields = 0;    // the history fields carried (HistoryField bits)
   std::uint32_t check = 0;     // kMessageCheck: a header that is not one is refused
 };
-constexpr std::uint32_t kMessageCheck = 0x67734d31u;  // "gsM1"
-constexpr std::uint32_t kTangentialSprings = 1u, kRollingSprings = 2u;
+constexpr std::uint32_t kMessageCheck = 0x67734d32u;  // "gsM2"
 
+#define GS_COUNT_FIELD(...) +1
+constexpr int kParticleFieldCount = 0 GS_PARTICLE_FIELDS(GS_COUNT_FIELD);
+constexpr int kHistoryFieldCount = 0 GS_HISTORY_FIELDS(GS_COUNT_FIELD);
+#undef GS_COUNT_FIELD
+
+// Byte offsets of each part of a payload, fields in declaration order.
 struct MessageLayout {
-  std::size_t id, material, marker, radius, mass, inertia, position, velocity, angular_velocity, orientation;
-  std::size_t partner, tangential, rolling;  // meaningful only when carried
-  std::size_t bytes;                         // the whole payload
+  std::array<std::size_t, kParticleFieldCount> particle{};
+  std::size_t partner = 0;                            // meaningful only when history is carried
+  std::array<std::size_t, kHistoryFieldCount> history{};  // meaningful only for the fields carried
+  std::size_t bytes = 0;                              // the whole payload
 
   explicit MessageLayout(const MessageHeader& h) {
-    const std::size_t m = h.count, slots = std::size_t(h.slots), spring = std::size_t(h.spring_bytes);
+    const std::size_t m = h.count, slots = std::size_t(h.slots);
     std::size_t at = 0;
     auto field = [&](std::size_t each) {
       const std::size_t here = at;
       at += (each * m + 7) / 8 * 8;
       return here;
     };
-    id = field(sizeof(ParticleId));
-    material = field(1);
-    marker = field(1);
-    radius = field(sizeof(float));
-    mass = field(sizeof(float));
-    inertia = field(sizeof(float));
-    position = field(sizeof(Vec3d));
-    velocity = field(sizeof(Vec3d));
-    angular_velocity = field(sizeof(Vec3d));
-    orientation = field(sizeof(Quaternion));
+    int k = 0;
+#define GS_LAY_OUT_FIELD(name, type) particle[k++] = field(sizeof(type));
+    GS_PARTICLE_FIELDS(GS_LAY_OUT_FIELD)
+#undef GS_LAY_OUT_FIELD
     partner = field(slots * sizeof(ParticleId));
-    tangential = field((h.springs & kTangentialSprings) ? slots * spring : 0);
-    rolling = field((h.springs & kRollingSprings) ? slots * spring : 0);
+    k = 0;
+    const bool wide = h.real_bytes == int(sizeof(double));
+#define GS_LAY_OUT_FIELD(name, value, bit) \
+  history[k++] = field((h.fields & (bit)) ? slots * (wide ? sizeof(value<double>) : sizeof(value<float>)) : 0);
+    GS_HISTORY_FIELDS(GS_LAY_OUT_FIELD)
+#undef GS_LAY_OUT_FIELD
     bytes = at;
   }
 };

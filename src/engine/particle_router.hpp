@@ -9,7 +9,7 @@
 
 #include "backend/device_array.hpp"
 #include "core/owner_map.hpp"
-#include "core/particle_store.hpp"
+#include "engine/particle_store.hpp"
 
 namespace gs {
 

@@ -4,7 +4,7 @@
 // interface, so it depends on no transport (comm/ implements it over MPI).
 #include <string>
 
-#include "core/particle_store.hpp"
+#include "engine/particle_store.hpp"
 #include "engine/step_kernels.hpp"
 
 namespace gs {

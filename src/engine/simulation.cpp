@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "contact/contact_time.hpp"
+#include "contact/contact_models.hpp"
 #include "scene/position_resolution.hpp"
 #include "walls/wall_motion.hpp"
 
@@ -66,16 +67,9 @@ void Simulation::set_up(const SceneSpec& scene) {
     throw std::invalid_argument("Verlet skin must be a finite number >= 0 (in largest diameters), got " +
                                 std::to_string(options_.verlet_skin));
   const Backend b = options_.backend;
-  store_.backend = b;
-  for (auto* a : {&store_.radius, &store_.mass, &store_.inertia}) *a = DeviceArray<float>(b);
-  for (auto* a : {&store_.position, &store_.velocity, &store_.angular_velocity}) *a = DeviceArray<Vec3d>(b);
-  store_.id = DeviceArray<ParticleId>(b);
-  store_.material = DeviceArray<std::uint8_t>(b);
-  store_.marker = DeviceArray<std::uint8_t>(b);
-  store_.orientation = DeviceArray<Quaternion>(b);
-
-  kernels_ = make_step_kernels({b, scene.precision, scene.model, scene.effects}, make_pair_table(scene),
-                               scene.contact_slots);
+  store_.place_on(b);
+  kernels_ = make_step_kernels({b, scene.precision, scene.model, scene.effects},
+                               {scene.materials, scene.pairs, scene.contact_slots});
   const double diameter = 2.0 * largest_radius(scene.particles);
   skin_ = kernels_->uses_verlet_list() ? options_.verlet_skin * diameter : 0.0;
   grid_ = make_cell_grid(scene.domain_min, scene.domain_max, diameter + skin_);
@@ -107,28 +101,21 @@ void Simulation::restore(const RestartState& r) {
     if (!exchange_ || exchange_->owns(r.particles.position[i])) mine.push_back(Index(i));
   ParticleRecords part;
   std::vector<Vec3d> force, torque;
-  const std::size_t slots = std::size_t(r.particles.history.slots);
-  part.history.slots = r.particles.history.slots;
+  const HostHistory& h = r.particles.history;
+  const std::size_t slots = std::size_t(h.slots);
+  part.history.slots = h.slots;
+  auto take_rows = [&](const auto& from, auto& to, std::size_t i) {
+    for (std::size_t s = 0; s < slots && !from.empty(); ++s) to.push_back(from[i * slots + s]);
+  };
   for (Index k : mine) {
     const std::size_t i = std::size_t(k);
-    part.id.push_back(r.particles.id[i]);
-    part.material.push_back(r.particles.material[i]);
-    part.marker.push_back(r.particles.marker[i]);
-    part.radius.push_back(r.particles.radius[i]);
-    part.mass.push_back(r.particles.mass[i]);
-    part.inertia.push_back(r.particles.inertia[i]);
-    part.position.push_back(r.particles.position[i]);
-    part.velocity.push_back(r.particles.velocity[i]);
-    part.angular_velocity.push_back(r.particles.angular_velocity[i]);
-    part.orientation.push_back(r.particles.orientation[i]);
+    for_each_particle_field(part, r.particles, [i](const char*, auto& to, const auto& from) { to.push_back(from[i]); });
     force.push_back(r.force[i]);
     torque.push_back(r.torque[i]);
-    const HostHistory& h = r.particles.history;
-    for (std::size_t s = 0; s < slots; ++s) {
-      part.history.partner.push_back(h.partner[i * slots + s]);
-      if (!h.tangential.empty()) part.history.tangential.push_back(h.tangential[i * slots + s]);
-      if (!h.rolling.empty()) part.history.rolling.push_back(h.rolling[i * slots + s]);
-    }
+    take_rows(h.partner, part.history.partner, i);
+    for_each_history_field(part.history, h, [&](const char*, unsigned, auto& to, const auto& from) {
+      take_rows(from, to, i);
+    });
   }
   store_.n_owned = 0;
   store_.n_ghost = 0;
@@ -314,19 +301,12 @@ ParticleSnapshot Simulation::snapshot() const {
   ParticleSnapshot s;
   s.time = time_;
   s.step = step_;
-  s.id = permuted(owned(id), order);
-  s.material = permuted(owned(store_.material.to_host()), order);
-  s.marker = permuted(owned(store_.marker.to_host()), order);
-  s.radius = permuted(owned(store_.radius.to_host()), order);
-  s.mass = permuted(owned(store_.mass.to_host()), order);
-  s.inertia = permuted(owned(store_.inertia.to_host()), order);
-  s.position = permuted(owned(store_.position.to_host()), order);
-  s.velocity = permuted(owned(store_.velocity.to_host()), order);
-  s.angular_velocity = permuted(owned(store_.angular_velocity.to_host()), order);
-  s.orientation = permuted(owned(store_.orientation.to_host()), order);
+  for_each_particle_field(s, store_, [&](const char*, auto& to, const auto& from) {
+    to = permuted(owned(from.to_host()), order);
+  });
   s.force = permuted(kernels_->forces(store_), order);
   s.torque = permuted(kernels_->torques(store_), order);
-  if (uses_history(scene_.effects)) s.contacts = permuted(kernels_->contact_counts(store_), order);
+  if (keeps_history(scene_.model, scene_.effects)) s.contacts = permuted(kernels_->contact_counts(store_), order);
   return s;
 }
 
@@ -354,10 +334,7 @@ HostHistory Simulation::history() const {
 }
 
 std::size_t Simulation::device_bytes() const {
-  const ParticleStore& s = store_;
-  return s.id.bytes() + s.material.bytes() + s.marker.bytes() + s.radius.bytes() + s.mass.bytes() +
-         s.inertia.bytes() + s.position.bytes() + s.velocity.bytes() + s.angular_velocity.bytes() +
-         s.orientation.bytes() + kernels_->bytes();
+  return store_.bytes() + kernels_->bytes();
 }
 
 }  // namespace gs

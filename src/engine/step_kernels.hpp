@@ -9,7 +9,7 @@
 #include "core/fault.hpp"
 #include "core/materials.hpp"
 #include "core/particle_records.hpp"
-#include "core/particle_store.hpp"
+#include "engine/particle_store.hpp"
 #include "engine/particle_message.hpp"
 #include "integrate/velocity_verlet.hpp"
 #include "neighbor/cell_grid.hpp"
@@ -27,7 +27,7 @@ class StepKernels {
   virtual ~StepKernels() = default;
 
   // Sizes the force arrays and the contact history for n particles (owned +
-  // ghosts); keeps the history of the first n_keep.
+  // ghosts); the history grows geometrically and keeps every stored contact.
   virtual void reserve(Index n) = 0;
   virtual void set_walls(const std::vector<Wall>& walls) = 0;
   // Triangle meshes (walls/mesh.hpp): everything once, then the vertices and
@@ -108,30 +108,15 @@ struct KernelChoice {
   unsigned effects;
 };
 
-// The material pair table in force precision, n_materials^2 entries.
-struct PairTableHost {
-  int n_materials = 0;
-  std::vector<double> stiffness_normal, stiffness_tangential, stiffness_rolling, damping_factor_normal,
-      damping_factor_tangential, friction, rolling_friction, cohesion, youngs_modulus_eff, shear_modulus_eff;
-  // Entry of the pair of materials (a, b).
-  std::size_t at(int a, int b) const { return std::size_t(a) * std::size_t(n_materials) + std::size_t(b); }
+// The kernels of `choice` for the scene's materials and pairs (the pair table
+// in force precision is built from them by the chosen contact model).
+struct ContactInputs {
+  const std::vector<MaterialSpec>& materials;
+  const std::vector<PairSpec>& pairs;
+  int contact_slots;
 };
-PairTableHost make_pair_table(const SceneSpec& scene);
-
-// Entry k of the table, as the force laws read it.
-template <class Real>
-PairParams<Real> pair_params(const PairTableHost& t, std::size_t k) {
-  return {Real(t.stiffness_normal[k]),      Real(t.stiffness_tangential[k]),      Real(t.stiffness_rolling[k]),
-          Real(t.damping_factor_normal[k]), Real(t.damping_factor_tangential[k]), Real(t.friction[k]),
-          Real(t.rolling_friction[k]),      Real(t.cohesion[k]),                  Real(t.youngs_modulus_eff[k]),
-          Real(t.shear_modulus_eff[k])};
-}
-
-std::unique_ptr<StepKernels> make_step_kernels(const KernelChoice& choice, const PairTableHost& pairs,
-                                               int contact_slots);
-std::unique_ptr<StepKernels> make_step_kernels_cpu(const KernelChoice& choice, const PairTableHost& pairs,
-                                                   int contact_slots);
-std::unique_ptr<StepKernels> make_step_kernels_cuda(const KernelChoice& choice, const PairTableHost& pairs,
-                                                    int contact_slots);
+std::unique_ptr<StepKernels> make_step_kernels(const KernelChoice& choice, const ContactInputs& contacts);
+std::unique_ptr<StepKernels> make_step_kernels_cpu(const KernelChoice& choice, const ContactInputs& contacts);
+std::unique_ptr<StepKernels> make_step_kernels_cuda(const KernelChoice& choice, const ContactInputs& contacts);
 
 }  // namespace gs

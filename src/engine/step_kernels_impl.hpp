@@ -4,6 +4,7 @@
 // keys are sorted.
 #include <algorithm>
 #include <stdexcept>
+#include <type_traits>
 
 #include "engine/force_kernel.hpp"
 #include "engine/mesh_arrays.hpp"
@@ -56,21 +57,23 @@ struct MarkByPlane {
   GS_HD void operator()(Index i) const { marker[i] = dot(position[i] - point, normal) >= 0 ? front : back; }
 };
 
-template <class Exec, class Real, ContactModel Model, unsigned Effects>
+template <class Exec, class Real, class Model, unsigned Effects>
 class StepKernelsImpl final : public StepKernels {
-  static constexpr bool kHistory = (Effects & (kFriction | kRollingResistance)) != 0;
-  static constexpr bool kTorque = kHistory;
+  // The history fields this run keeps (core/particle_fields.hpp).
+  static constexpr unsigned kKept = history_fields_kept<Model>(Effects);
+  static constexpr bool kHistory = kKept != 0;
+  static constexpr bool kTorque = makes_torques(Effects);
 
  public:
-  StepKernelsImpl(const PairTableHost& table, int slots)
+  StepKernelsImpl(const std::vector<MaterialSpec>& materials, const std::vector<PairSpec>& pairs, int slots)
       : pairs_(Exec::backend), walls_(Exec::backend), wall_screens_(Exec::backend), meshes_(Exec::backend),
         fault_(Exec::backend, 1), cells_(Exec::backend) {
-    upload_pairs(table);
+    n_materials_ = int(materials.size());
+    pairs_.from_host(make_pair_table<Real, Model>(materials, pairs));
     fault_.zero();
     history_.slots = kHistory ? slots : 0;
     history_.partner = DeviceArray<ParticleId>(Exec::backend);
-    history_.tangential = DeviceArray<Vec3<Real>>(Exec::backend);
-    history_.rolling = DeviceArray<Vec3<Real>>(Exec::backend);
+    for_each_history_field(history_, [](const char*, unsigned, auto& a) { a = std::decay_t<decltype(a)>(Exec::backend); });
     forces_.force = DeviceArray<Vec3<Real>>(Exec::backend);
     forces_.torque = DeviceArray<Vec3<Real>>(Exec::backend);
   }
@@ -194,8 +197,9 @@ class StepKernelsImpl final : public StepKernels {
   void set_history(const ParticleStore& s, const HostHistory& h) override;
 
   std::size_t bytes() const override {
-    return forces_.force.bytes() + forces_.torque.bytes() + history_.partner.bytes() + history_.tangential.bytes() +
-           history_.rolling.bytes() + cells_.bytes() + verlet_.bytes() + pairs_.bytes() + walls_.bytes() + wall_screens_.bytes() +
+    std::size_t history = history_.partner.bytes();
+    for_each_history_field(history_, [&](const char*, unsigned, const auto& a) { history += a.bytes(); });
+    return forces_.force.bytes() + forces_.torque.bytes() + history + cells_.bytes() + verlet_.bytes() + pairs_.bytes() + walls_.bytes() + wall_screens_.bytes() +
            staging_.bytes();
   }
 
@@ -206,7 +210,7 @@ class StepKernelsImpl final : public StepKernels {
     ForceKernel<Real, Model, Effects, Candidates> k{s.id.data(), s.material.data(), s.radius.data(), s.mass.data(),
                                                     s.position.data(), s.velocity.data(),
                                                     s.angular_velocity.data(), candidates,
-                                                    PairTable<Real>{pairs_.data(), n_materials_}, walls_.data(),
+                                                    PairTable<Real, Model>{pairs_.data(), n_materials_}, walls_.data(),
                                                     wall_screens_.data(), n_walls_, meshes_.view(), meshes_.loads(),
                                                     slot_table(), forces_.force.data(),
                                                     kTorque ? forces_.torque.data() : nullptr, Real(dt),
@@ -220,12 +224,18 @@ class StepKernelsImpl final : public StepKernels {
                           kTorque ? forces_.torque.data() : nullptr, s.mass.data(), s.inertia.data(), 0.5 * p.dt,
                           p.gravity, p.fp32_state};
   }
-  SlotTable<Real, Effects> slot_table() {
-    return SlotTable<Real, Effects>{history_.partner.data(), history_.tangential.data(), history_.rolling.data(),
-                                    history_.slots, history_.strides};
+  SlotTable<Real, kKept> slot_table() {
+    SlotTable<Real, kKept> t;
+    t.partner = history_.partner.data();
+#define GS_POINT_AT_FIELD(name, value, bit) t.name = history_.name.data();
+    GS_HISTORY_FIELDS(GS_POINT_AT_FIELD)
+#undef GS_POINT_AT_FIELD
+    t.slots = history_.slots;
+    t.strides = history_.strides;
+    return t;
   }
-  void upload_pairs(const PairTableHost& t);
   void grow_history(std::size_t capacity);
+  void keep_in_order(ParticleStore& s, const Index* order, Index n);
   static std::vector<Vec3<Real>> narrowed(const std::vector<Vec3d>& v, Index n) {
     if (v.size() != std::size_t(n)) throw std::invalid_argument("one force per owned particle expected");
     std::vector<Vec3<Real>> out(v.size());
@@ -239,7 +249,7 @@ class StepKernelsImpl final : public StepKernels {
     return out;
   }
 
-  DeviceArray<PairParams<Real>> pairs_;
+  DeviceArray<PairParams<Real, Model>> pairs_;
   int n_materials_ = 0;
   DeviceArray<Wall> walls_;
   DeviceArray<WallScreen> wall_screens_;  // per wall, at the pose walls_ holds

@@ -2,6 +2,7 @@
 // Out-of-line members of StepKernelsImpl: data movement (reorder, history
 // transfer) kept apart from the physics above.
 #include <stdexcept>
+#include <type_traits>
 
 namespace gs {
 
@@ -45,43 +46,32 @@ void gather_slots_in_place(DeviceArray<T>& a, const Index* order, Index n, int s
   }
 }
 
-template <class Exec, class Real, ContactModel Model, unsigned Effects>
+template <class Exec, class Real, class Model, unsigned Effects>
 void StepKernelsImpl<Exec, Real, Model, Effects>::reorder_by_cells(ParticleStore& s) {
   if (s.n_ghost != 0) throw std::logic_error("reorder_by_cells needs a cell list of owned particles only");
   verlet_.valid = false;
   const Index n = s.n_owned;
-  const Index* order = cells_.sorted.data();
+  keep_in_order(s, cells_.sorted.data(), n);
+}
+
+// Owned particles order[0, n) become [0, n), with their forces and history.
+template <class Exec, class Real, class Model, unsigned Effects>
+void StepKernelsImpl<Exec, Real, Model, Effects>::keep_in_order(ParticleStore& s, const Index* order, Index n) {
   DeviceArray<unsigned char>& tmp = staging_;
-  gather_in_place<Exec>(s.id, order, n, tmp);
-  gather_in_place<Exec>(s.material, order, n, tmp);
-  gather_in_place<Exec>(s.marker, order, n, tmp);
-  gather_in_place<Exec>(s.radius, order, n, tmp);
-  gather_in_place<Exec>(s.mass, order, n, tmp);
-  gather_in_place<Exec>(s.inertia, order, n, tmp);
-  gather_in_place<Exec>(s.position, order, n, tmp);
-  gather_in_place<Exec>(s.velocity, order, n, tmp);
-  gather_in_place<Exec>(s.angular_velocity, order, n, tmp);
-  gather_in_place<Exec>(s.orientation, order, n, tmp);
+  for_each_particle_field(s, [&](const char*, auto& a) { gather_in_place<Exec>(a, order, n, tmp); });
   gather_in_place<Exec>(forces_.force, order, n, tmp);
   if (kTorque) gather_in_place<Exec>(forces_.torque, order, n, tmp);
   if (kHistory) {
     gather_slots_in_place<Exec>(history_.partner, order, n, history_.slots, history_.strides, tmp);
-    gather_slots_in_place<Exec>(history_.tangential, order, n, history_.slots, history_.strides, tmp);
-    gather_slots_in_place<Exec>(history_.rolling, order, n, history_.slots, history_.strides, tmp);
+    for_each_history_field(history_, [&](const char*, unsigned, auto& a) {
+      gather_slots_in_place<Exec>(a, order, n, history_.slots, history_.strides, tmp);
+    });
   }
-}
-
-template <class Exec, class Real, ContactModel Model, unsigned Effects>
-void StepKernelsImpl<Exec, Real, Model, Effects>::upload_pairs(const PairTableHost& t) {
-  n_materials_ = t.n_materials;
-  std::vector<PairParams<Real>> p(std::size_t(t.n_materials) * t.n_materials);
-  for (std::size_t k = 0; k < p.size(); ++k) p[k] = pair_params<Real>(t, k);
-  pairs_.from_host(p);
 }
 
 // Growing the capacity changes the strides of a slot-major history: the
 // entries are re-laid out (new particles start with free slots).
-template <class Exec, class Real, ContactModel Model, unsigned Effects>
+template <class Exec, class Real, class Model, unsigned Effects>
 void StepKernelsImpl<Exec, Real, Model, Effects>::grow_history(std::size_t capacity) {
   const std::size_t old_capacity = history_.capacity;
   const HistoryStrides old = history_.strides;
@@ -95,13 +85,14 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::grow_history(std::size_t capac
     a.from_host(fresh);
   };
   relayout(history_.partner, kNoPartner);
-  if (Effects & kFriction) relayout(history_.tangential, Vec3<Real>());
-  if (Effects & kRollingResistance) relayout(history_.rolling, Vec3<Real>());
+  for_each_history_field(history_, [&](const char*, unsigned bit, auto& a) {
+    if (kKept & bit) relayout(a, typename std::decay_t<decltype(a)>::value_type{});
+  });
   history_.capacity = capacity;
   history_.strides = fresh_strides;
 }
 
-template <class Exec, class Real, ContactModel Model, unsigned Effects>
+template <class Exec, class Real, class Model, unsigned Effects>
 HostHistory StepKernelsImpl<Exec, Real, Model, Effects>::history(const ParticleStore& s) const {
   HostHistory h;
   h.slots = history_.slots;
@@ -109,25 +100,22 @@ HostHistory StepKernelsImpl<Exec, Real, Model, Effects>::history(const ParticleS
   const Index n = s.n_owned;
   const HistoryStrides at = history_.strides;
   const std::size_t slots = std::size_t(h.slots);
-  const std::vector<ParticleId> partner = history_.partner.to_host();
-  const std::vector<Vec3<Real>> tangential = history_.tangential.to_host();
-  const std::vector<Vec3<Real>> rolling = history_.rolling.to_host();
-  // Springs only of the effects the scene has: a checkpoint of a frictional
-  // bed without rolling resistance carries no rolling zeros.
-  h.partner.resize(n * slots);
-  h.tangential.resize(tangential.empty() ? 0 : n * slots);
-  h.rolling.resize(rolling.empty() ? 0 : n * slots);
-  for (Index i = 0; i < n; ++i)
-    for (std::size_t k = 0; k < slots; ++k) {
-      const std::size_t e = at.at(int(k), std::size_t(i));
-      h.partner[i * slots + k] = partner[e];
-      if (!tangential.empty()) h.tangential[i * slots + k] = Vec3d(tangential[e]);
-      if (!rolling.empty()) h.rolling[i * slots + k] = Vec3d(rolling[e]);
-    }
+  // Rows i * slots + k from the layout of `at`, widened to fp64. Only the
+  // fields the run keeps: a checkpoint of a frictional bed without rolling
+  // resistance carries no rolling zeros.
+  auto rows = [&](const auto& field, auto& out) {
+    const auto device = field.to_host();
+    out.resize(device.empty() ? 0 : n * slots);
+    for (Index i = 0; i < n && !device.empty(); ++i)
+      for (std::size_t k = 0; k < slots; ++k)
+        out[i * slots + k] = typename std::decay_t<decltype(out)>::value_type(device[at.at(int(k), std::size_t(i))]);
+  };
+  rows(history_.partner, h.partner);
+  for_each_history_field(history_, h, [&](const char*, unsigned, const auto& field, auto& out) { rows(field, out); });
   return h;
 }
 
-template <class Exec, class Real, ContactModel Model, unsigned Effects>
+template <class Exec, class Real, class Model, unsigned Effects>
 std::vector<std::uint16_t> StepKernelsImpl<Exec, Real, Model, Effects>::contact_counts(const ParticleStore& s) const {
   if (!kHistory) return std::vector<std::uint16_t>(std::size_t(s.n_owned), 0);
   DeviceArray<std::uint16_t> count(Exec::backend, std::size_t(s.n_owned));
@@ -135,7 +123,7 @@ std::vector<std::uint16_t> StepKernelsImpl<Exec, Real, Model, Effects>::contact_
   return count.to_host();
 }
 
-template <class Exec, class Real, ContactModel Model, unsigned Effects>
+template <class Exec, class Real, class Model, unsigned Effects>
 void StepKernelsImpl<Exec, Real, Model, Effects>::set_history(const ParticleStore& s, const HostHistory& h) {
   if (!kHistory) return;
   if (h.slots != history_.slots)
@@ -144,18 +132,18 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::set_history(const ParticleStor
   reserve(s.size());
   const HistoryStrides at = history_.strides;
   const std::size_t slots = std::size_t(h.slots), entries = slots * history_.capacity;
-  std::vector<ParticleId> partner(entries, kNoPartner);
-  std::vector<Vec3<Real>> tangential(entries), rolling(entries);
-  for (Index i = 0; i < s.n_owned; ++i)
-    for (std::size_t k = 0; k < slots; ++k) {
-      const std::size_t e = at.at(int(k), std::size_t(i));
-      partner[e] = h.partner[i * slots + k];
-      if (!h.tangential.empty()) tangential[e] = Vec3<Real>(h.tangential[i * slots + k]);
-      if (!h.rolling.empty()) rolling[e] = Vec3<Real>(h.rolling[i * slots + k]);
-    }
-  history_.partner.from_host(partner);
-  if (Effects & kFriction) history_.tangential.from_host(tangential);
-  if (Effects & kRollingResistance) history_.rolling.from_host(rolling);
+  // The layout of `at` from rows i * slots + k, narrowed to the force precision.
+  auto layout = [&](const auto& rows, auto& field, auto empty) {
+    std::vector<decltype(empty)> device(entries, empty);
+    for (Index i = 0; i < s.n_owned && !rows.empty(); ++i)
+      for (std::size_t k = 0; k < slots; ++k)
+        device[at.at(int(k), std::size_t(i))] = decltype(empty)(rows[i * slots + k]);
+    field.from_host(device);
+  };
+  layout(h.partner, history_.partner, kNoPartner);
+  for_each_history_field(h, history_, [&](const char*, unsigned bit, const auto& rows, auto& field) {
+    if (kKept & bit) layout(rows, field, typename std::decay_t<decltype(field)>::value_type{});
+  });
 }
 
 }  // namespace gs

@@ -69,11 +69,6 @@ std::vector<T> slot_major_to_rows(const std::vector<T>& block, int slots, std::s
   return rows;
 }
 
-template <class Real>
-std::vector<Vec3d> widened(const std::vector<Vec3<Real>>& v) {
-  return std::vector<Vec3d>(v.begin(), v.end());
-}
-
 template <class T>
 struct CopyTo {
   const T* from;
@@ -102,21 +97,20 @@ void append_from_host(DeviceArray<T>& a, const std::vector<T>& h, std::size_t fi
   if (!h.empty()) backend_copy_from_host(a.backend(), a.data() + first, h.data(), h.size() * sizeof(T));
 }
 
-template <class Exec, class Real, ContactModel Model, unsigned Effects>
+template <class Exec, class Real, class Model, unsigned Effects>
 MessageHeader StepKernelsImpl<Exec, Real, Model, Effects>::message_header(Index count, bool with_history) const {
   MessageHeader h;
   h.count = std::uint64_t(count);
   h.check = kMessageCheck;
   if (with_history && kHistory) {
     h.slots = history_.slots;
-    h.spring_bytes = std::int32_t(sizeof(Vec3<Real>));
-    h.springs = ((Effects & kFriction) != 0 ? kTangentialSprings : 0u) |
-                ((Effects & kRollingResistance) != 0 ? kRollingSprings : 0u);
+    h.real_bytes = std::int32_t(sizeof(Real));
+    h.fields = kKept;
   }
   return h;
 }
 
-template <class Exec, class Real, ContactModel Model, unsigned Effects>
+template <class Exec, class Real, class Model, unsigned Effects>
 MessageHeader StepKernelsImpl<Exec, Real, Model, Effects>::pack(const ParticleStore& s, const DeviceArray<Index>& w,
                                                                 bool with_history,
                                                                 DeviceArray<unsigned char>& out) const {
@@ -124,51 +118,37 @@ MessageHeader StepKernelsImpl<Exec, Real, Model, Effects>::pack(const ParticleSt
   const MessageLayout at(h);
   out.resize(at.bytes);
   unsigned char* b = out.data();
-  gather_into<Exec>(s.id, w, b + at.id);
-  gather_into<Exec>(s.material, w, b + at.material);
-  gather_into<Exec>(s.marker, w, b + at.marker);
-  gather_into<Exec>(s.radius, w, b + at.radius);
-  gather_into<Exec>(s.mass, w, b + at.mass);
-  gather_into<Exec>(s.inertia, w, b + at.inertia);
-  gather_into<Exec>(s.position, w, b + at.position);
-  gather_into<Exec>(s.velocity, w, b + at.velocity);
-  gather_into<Exec>(s.angular_velocity, w, b + at.angular_velocity);
-  gather_into<Exec>(s.orientation, w, b + at.orientation);
+  int k = 0;
+  for_each_particle_field(s, [&](const char*, const auto& a) { gather_into<Exec>(a, w, b + at.particle[k++]); });
   if (h.slots == 0) return h;
   gather_history_into<Exec>(history_.partner, w, h.slots, history_.strides, b + at.partner);
-  if (h.springs & kTangentialSprings)
-    gather_history_into<Exec>(history_.tangential, w, h.slots, history_.strides, b + at.tangential);
-  if (h.springs & kRollingSprings)
-    gather_history_into<Exec>(history_.rolling, w, h.slots, history_.strides, b + at.rolling);
+  k = 0;
+  for_each_history_field(history_, [&](const char*, unsigned bit, const auto& a) {
+    if (h.fields & bit) gather_history_into<Exec>(a, w, h.slots, history_.strides, b + at.history[k]);
+    ++k;
+  });
   return h;
 }
 
-template <class Exec, class Real, ContactModel Model, unsigned Effects>
+template <class Exec, class Real, class Model, unsigned Effects>
 void StepKernelsImpl<Exec, Real, Model, Effects>::unpack(ParticleStore& s, const MessageHeader& h,
                                                          const unsigned char* payload, bool as_ghosts) {
   if (!as_ghosts && s.n_ghost != 0) throw std::logic_error("owned particles can only be appended before ghosts");
   if (h.check != kMessageCheck) throw std::runtime_error("a particle message from another rank is corrupt");
   // Owned arrivals must carry exactly this run's history; ghosts carry none.
   const MessageHeader want = message_header(Index(h.count), !as_ghosts);
-  if (h.slots != want.slots || h.spring_bytes != want.spring_bytes || h.springs != want.springs)
-    throw std::runtime_error("arriving particles carry " + std::to_string(h.slots) + " history slots of " +
-                             std::to_string(h.spring_bytes) + "-byte springs; this run uses " +
-                             std::to_string(want.slots) + " of " + std::to_string(want.spring_bytes));
+  if (h.slots != want.slots || h.real_bytes != want.real_bytes || h.fields != want.fields)
+    throw std::runtime_error("arriving particles carry " + std::to_string(h.slots) + " history slots of fields " +
+                             std::to_string(h.fields) + " in " + std::to_string(h.real_bytes) +
+                             "-byte reals; this run uses " + std::to_string(want.slots) + " of fields " +
+                             std::to_string(want.fields) + " in " + std::to_string(want.real_bytes));
   verlet_.valid = false;
   const MessageLayout at(h);
   const std::size_t first = std::size_t(s.size());
   const Index m = Index(h.count);
   s.resize_arrays(first + std::size_t(m));
-  scatter_from<Exec>(payload + at.id, s.id, first, m);
-  scatter_from<Exec>(payload + at.material, s.material, first, m);
-  scatter_from<Exec>(payload + at.marker, s.marker, first, m);
-  scatter_from<Exec>(payload + at.radius, s.radius, first, m);
-  scatter_from<Exec>(payload + at.mass, s.mass, first, m);
-  scatter_from<Exec>(payload + at.inertia, s.inertia, first, m);
-  scatter_from<Exec>(payload + at.position, s.position, first, m);
-  scatter_from<Exec>(payload + at.velocity, s.velocity, first, m);
-  scatter_from<Exec>(payload + at.angular_velocity, s.angular_velocity, first, m);
-  scatter_from<Exec>(payload + at.orientation, s.orientation, first, m);
+  int k = 0;
+  for_each_particle_field(s, [&](const char*, auto& a) { scatter_from<Exec>(payload + at.particle[k++], a, first, m); });
   if (as_ghosts) s.n_ghost += m;
   else s.n_owned += m;
   reserve(s.size());
@@ -179,51 +159,28 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::unpack(ParticleStore& s, const
                                                             history_.strides, Index(first), m});
   };
   scatter_history(at.partner, history_.partner);
-  if (h.springs & kTangentialSprings) scatter_history(at.tangential, history_.tangential);
-  if (h.springs & kRollingSprings) scatter_history(at.rolling, history_.rolling);
+  k = 0;
+  for_each_history_field(history_, [&](const char*, unsigned bit, auto& a) {
+    if (h.fields & bit) scatter_history(at.history[k], a);
+    ++k;
+  });
 }
 
-template <class Exec, class Real, ContactModel Model, unsigned Effects>
+template <class Exec, class Real, class Model, unsigned Effects>
 void StepKernelsImpl<Exec, Real, Model, Effects>::keep_owned(ParticleStore& s, const DeviceArray<Index>& order) {
   verlet_.valid = false;
   const Index n = Index(order.size());
-  DeviceArray<unsigned char>& tmp = staging_;
-  gather_in_place<Exec>(s.id, order.data(), n, tmp);
-  gather_in_place<Exec>(s.material, order.data(), n, tmp);
-  gather_in_place<Exec>(s.marker, order.data(), n, tmp);
-  gather_in_place<Exec>(s.radius, order.data(), n, tmp);
-  gather_in_place<Exec>(s.mass, order.data(), n, tmp);
-  gather_in_place<Exec>(s.inertia, order.data(), n, tmp);
-  gather_in_place<Exec>(s.position, order.data(), n, tmp);
-  gather_in_place<Exec>(s.velocity, order.data(), n, tmp);
-  gather_in_place<Exec>(s.angular_velocity, order.data(), n, tmp);
-  gather_in_place<Exec>(s.orientation, order.data(), n, tmp);
-  gather_in_place<Exec>(forces_.force, order.data(), n, tmp);
-  if (kTorque) gather_in_place<Exec>(forces_.torque, order.data(), n, tmp);
-  if (kHistory) {
-    gather_slots_in_place<Exec>(history_.partner, order.data(), n, history_.slots, history_.strides, tmp);
-    gather_slots_in_place<Exec>(history_.tangential, order.data(), n, history_.slots, history_.strides, tmp);
-    gather_slots_in_place<Exec>(history_.rolling, order.data(), n, history_.slots, history_.strides, tmp);
-  }
+  keep_in_order(s, order.data(), n);
   s.n_owned = n;
   s.drop_ghosts();
 }
 
-template <class Exec, class Real, ContactModel Model, unsigned Effects>
+template <class Exec, class Real, class Model, unsigned Effects>
 void StepKernelsImpl<Exec, Real, Model, Effects>::append(ParticleStore& s, const ParticleRecords& r, bool as_ghosts) {
   if (!as_ghosts && s.n_ghost != 0) throw std::logic_error("owned particles can only be appended before ghosts");
   verlet_.valid = false;
   const std::size_t first = std::size_t(s.size());
-  append_from_host(s.id, r.id, first);
-  append_from_host(s.material, r.material, first);
-  append_from_host(s.marker, r.marker, first);
-  append_from_host(s.radius, r.radius, first);
-  append_from_host(s.mass, r.mass, first);
-  append_from_host(s.inertia, r.inertia, first);
-  append_from_host(s.position, r.position, first);
-  append_from_host(s.velocity, r.velocity, first);
-  append_from_host(s.angular_velocity, r.angular_velocity, first);
-  append_from_host(s.orientation, r.orientation, first);
+  for_each_particle_field(s, r, [&](const char*, auto& a, const auto& from) { append_from_host(a, from, first); });
   const Index m = Index(r.size());
   if (as_ghosts) s.n_ghost += m;
   else s.n_owned += m;
@@ -235,23 +192,23 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::append(ParticleStore& s, const
     throw std::runtime_error("arriving particles carry " + std::to_string(h.slots) + " history slots, this run uses " +
                              std::to_string(history_.slots));
   const std::size_t slots = std::size_t(h.slots), count = std::size_t(m);
-  std::vector<ParticleId> partner(slots * count);
-  for (std::size_t i = 0; i < count; ++i)
-    for (std::size_t k = 0; k < slots; ++k) partner[k * count + i] = h.partner[i * slots + k];
-  scatter_history_from_host<Exec>(history_.partner, partner, h.slots, history_.strides, Index(first), staging_);
-  auto narrow_springs = [&](const std::vector<Vec3d>& from, DeviceArray<Vec3<Real>>& a) {
-    std::vector<Vec3<Real>> block(slots * count);
+  // Rows i * slots + k into a packed slot-major block, in the device type.
+  auto scatter_rows = [&](const auto& rows, auto& a) {
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    std::vector<T> block(slots * count);
     for (std::size_t i = 0; i < count; ++i)
-      for (std::size_t k = 0; k < slots; ++k) block[k * count + i] = Vec3<Real>(from[i * slots + k]);
+      for (std::size_t k = 0; k < slots; ++k) block[k * count + i] = T(rows[i * slots + k]);
     scatter_history_from_host<Exec>(a, block, h.slots, history_.strides, Index(first), staging_);
   };
-  if constexpr ((Effects & kFriction) != 0) narrow_springs(h.tangential, history_.tangential);
-  if constexpr ((Effects & kRollingResistance) != 0) narrow_springs(h.rolling, history_.rolling);
+  scatter_rows(h.partner, history_.partner);
+  for_each_history_field(h, history_, [&](const char*, unsigned bit, const auto& rows, auto& a) {
+    if (kKept & bit) scatter_rows(rows, a);
+  });
 }
 
 // Selected and gathered on the backend, so only the particles on a wall
 // cross to the host: the whole history is some 500 bytes per particle there.
-template <class Exec, class Real, ContactModel Model, unsigned Effects>
+template <class Exec, class Real, class Model, unsigned Effects>
 ParticleRecords StepKernelsImpl<Exec, Real, Model, Effects>::wall_contact_history(const ParticleStore& s) const {
   ParticleRecords r;
   r.history.slots = history_.slots;
@@ -262,28 +219,26 @@ ParticleRecords StepKernelsImpl<Exec, Real, Model, Effects>::wall_contact_histor
   which.resize(std::size_t(m));
   if (m == 0) return r;
   DeviceArray<unsigned char> block(Exec::backend);
+  // Rows i * slots + k of field, widened to the host type of `rows`.
   auto fetch = [&](const auto& field, auto& rows) {
     using T = typename std::decay_t<decltype(field)>::value_type;
+    using Host = typename std::decay_t<decltype(rows)>::value_type;
     block.resize(std::size_t(m) * sizeof(T) * std::size_t(history_.slots));
     gather_history_into<Exec>(field, which, history_.slots, history_.strides, block.data());
     std::vector<T> packed(std::size_t(m) * std::size_t(history_.slots));
     backend_copy_to_host(Exec::backend, packed.data(), block.data(), packed.size() * sizeof(T));
-    rows = slot_major_to_rows(packed, history_.slots, std::size_t(m));
+    const std::vector<T> device_rows = slot_major_to_rows(packed, history_.slots, std::size_t(m));
+    rows.resize(device_rows.size());
+    for (std::size_t e = 0; e < rows.size(); ++e) rows[e] = Host(device_rows[e]);
   };
   block.resize(std::size_t(m) * sizeof(ParticleId));
   gather_into<Exec>(s.id, which, block.data());
   r.id.resize(std::size_t(m));
   backend_copy_to_host(Exec::backend, r.id.data(), block.data(), r.id.size() * sizeof(ParticleId));
   fetch(history_.partner, r.history.partner);
-  std::vector<Vec3<Real>> springs;
-  if (Effects & kFriction) {
-    fetch(history_.tangential, springs);
-    r.history.tangential = widened(springs);
-  }
-  if (Effects & kRollingResistance) {
-    fetch(history_.rolling, springs);
-    r.history.rolling = widened(springs);
-  }
+  for_each_history_field(history_, r.history, [&](const char*, unsigned bit, const auto& field, auto& rows) {
+    if (kKept & bit) fetch(field, rows);
+  });
   return r;
 }
 

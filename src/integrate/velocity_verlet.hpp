@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "core/fault.hpp"
-#include "core/particle_store.hpp"
+#include "core/particle_fields.hpp"
 
 namespace gs {
 

@@ -19,15 +19,7 @@ void require_length(std::size_t actual, std::size_t expected, const char* field,
 void validate(const Checkpoint& c, const std::string& path) {
   const ParticleSnapshot& p = c.particles;
   const std::size_t n = p.size();
-  require_length(p.material.size(), n, "material", path);
-  require_length(p.marker.size(), n, "marker", path);
-  require_length(p.radius.size(), n, "radius", path);
-  require_length(p.mass.size(), n, "mass", path);
-  require_length(p.inertia.size(), n, "inertia", path);
-  require_length(p.position.size(), n, "position", path);
-  require_length(p.velocity.size(), n, "velocity", path);
-  require_length(p.angular_velocity.size(), n, "angular_velocity", path);
-  require_length(p.orientation.size(), n, "orientation", path);
+  for_each_particle_field(p, [&](const char* name, const auto& field) { require_length(field.size(), n, name, path); });
   require_length(p.force.size(), n, "force", path);
   require_length(p.torque.size(), n, "torque", path);
   const HostHistory& h = c.history;
@@ -35,34 +27,38 @@ void validate(const Checkpoint& c, const std::string& path) {
     throw std::invalid_argument("write_checkpoint " + path + ": history has " + std::to_string(h.slots) + " slots");
   const std::size_t entries = n * std::size_t(h.slots);
   require_length(h.partner.size(), entries, "history partner", path);
-  if (!h.tangential.empty()) require_length(h.tangential.size(), entries, "history tangential", path);
-  if (!h.rolling.empty()) require_length(h.rolling.size(), entries, "history rolling", path);
+  for_each_history_field(h, [&](const char* name, unsigned, const auto& field) {
+    if (!field.empty()) require_length(field.size(), entries, ("history " + std::string(name)).c_str(), path);
+  });
 }
 
 void write_particles(const h5::File& f, const ParticleSnapshot& p) {
   h5::create_group(f, "particles");
   h5::write_attribute(f, "particles", "time", p.time);
   h5::write_attribute(f, "particles", "step", std::int64_t(p.step));
-  h5::write_vector(f, "particles/id", p.id);
-  h5::write_vector(f, "particles/material", p.material);
-  h5::write_vector(f, "particles/marker", p.marker);
-  h5::write_vector(f, "particles/radius", p.radius);
-  h5::write_vector(f, "particles/mass", p.mass);
-  h5::write_vector(f, "particles/inertia", p.inertia);
-  h5::write_vec3(f, "particles/position", p.position);
-  h5::write_vec3(f, "particles/velocity", p.velocity);
-  h5::write_vec3(f, "particles/angular_velocity", p.angular_velocity);
-  h5::write_quaternions(f, "particles/orientation", p.orientation);
+  for_each_particle_field(p, [&](const char* name, const auto& field) {
+    h5::write_field(f, std::string("particles/") + name, field);
+  });
   h5::write_vec3(f, "particles/force", p.force);
   h5::write_vec3(f, "particles/torque", p.torque);
+}
+
+// A history field of n * slots entries: (entries, 3) for vectors, (entries) for scalars.
+void write_history_field(const h5::File& f, const std::string& path, const std::vector<Vec3d>& v) {
+  h5::write_vec3(f, path, v);
+}
+void write_history_field(const h5::File& f, const std::string& path, const std::vector<double>& v) {
+  h5::write_vector(f, path, v);
 }
 
 void write_history(const h5::File& f, const HostHistory& h, std::size_t n) {
   h5::create_group(f, "history");
   h5::write_attribute(f, "history", "slots", std::int32_t(h.slots));
   h5::write_array(f, "history/partner", h.partner.data(), {hsize_t(n), hsize_t(h.slots)});
-  h5::write_vec3(f, "history/tangential", h.tangential);
-  h5::write_vec3(f, "history/rolling", h.rolling);
+  // Format 2's fields always, empty when not kept; later fields only when kept.
+  for_each_history_field(h, [&](const char* name, unsigned bit, const auto& field) {
+    if ((bit & kFormat2HistoryFields) != 0 || !field.empty()) write_history_field(f, std::string("history/") + name, field);
+  });
 }
 
 void write_decomposition(const h5::File& f, const Checkpoint& c) {
@@ -95,25 +91,16 @@ std::uint64_t checkpoint_checksum(const Checkpoint& c) {
   sum.add_value(c.random_state);
   sum.add_value(std::uint64_t(p.size()));
   sum.add_value(std::int32_t(h.slots));
-  sum.add_value(std::uint64_t(h.tangential.size()));
-  sum.add_value(std::uint64_t(h.rolling.size()));
+  for_each_history_field(h, [&](const char*, unsigned bit, const auto& field) {
+    if ((bit & kFormat2HistoryFields) != 0 || !field.empty()) sum.add_value(std::uint64_t(field.size()));
+  });
   sum.add_value(std::uint64_t(c.walls.size()));
   sum.add_value(std::uint64_t(c.decomposition_cuts.size()));
-  sum.add_array(p.id);
-  sum.add_array(p.material);
-  sum.add_array(p.marker);
-  sum.add_array(p.radius);
-  sum.add_array(p.mass);
-  sum.add_array(p.inertia);
-  sum.add_array(p.position);
-  sum.add_array(p.velocity);
-  sum.add_array(p.angular_velocity);
-  sum.add_array(p.orientation);
+  for_each_particle_field(p, [&](const char*, const auto& field) { sum.add_array(field); });
   sum.add_array(p.force);
   sum.add_array(p.torque);
   sum.add_array(h.partner);
-  sum.add_array(h.tangential);
-  sum.add_array(h.rolling);
+  for_each_history_field(h, [&](const char*, unsigned, const auto& field) { sum.add_array(field); });
   for (const Wall& w : c.walls) {
     const auto state = wall_state(w);
     sum.add(state.data(), sizeof(state));

@@ -12,8 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/simulation.hpp"
-#include "engine/step_kernels.hpp"
+#include "core/particle_snapshot.hpp"
 #include "walls/wall.hpp"
 
 namespace gs {

@@ -56,26 +56,25 @@ ParticleSnapshot read_particles(const h5::File& f, hsize_t n) {
   ParticleSnapshot p;
   p.time = h5::read_attribute<double>(f, "particles", "time");
   p.step = h5::read_attribute<std::int64_t>(f, "particles", "step");
-  p.id = h5::read_array<ParticleId>(f, "particles/id", {n});
-  p.material = h5::read_array<std::uint8_t>(f, "particles/material", {n});
-  p.marker = h5::read_array<std::uint8_t>(f, "particles/marker", {n});
-  p.radius = h5::read_array<float>(f, "particles/radius", {n});
-  p.mass = h5::read_array<float>(f, "particles/mass", {n});
-  p.inertia = h5::read_array<float>(f, "particles/inertia", {n});
-  p.position = h5::read_vec3(f, "particles/position", n);
-  p.velocity = h5::read_vec3(f, "particles/velocity", n);
-  p.angular_velocity = h5::read_vec3(f, "particles/angular_velocity", n);
-  p.orientation = h5::read_quaternions(f, "particles/orientation", n);
+  for_each_particle_field(p, [&](const char* name, auto& field) {
+    h5::read_field(f, std::string("particles/") + name, n, field);
+  });
   p.force = h5::read_vec3(f, "particles/force", n);
   p.torque = h5::read_vec3(f, "particles/torque", n);
   return p;
 }
 
-// Tangential and rolling springs exist only when their effect is on: (0, 3) or (n * slots, 3).
-std::vector<Vec3d> read_springs(const h5::File& f, const std::string& path, hsize_t entries) {
+// A history field is kept only when the run's model and effects use it:
+// (0, 3) or (n * slots, 3) for vectors, absent or (n * slots) for scalars
+// (kFormat2HistoryFields are always present).
+void read_history_field(const h5::File& f, const std::string& path, hsize_t entries, std::vector<Vec3d>& out) {
   const std::vector<hsize_t> dims = h5::dims_of(f, path);
   const hsize_t rows = dims.size() == 2 && dims[0] == 0 ? 0 : entries;
-  return h5::read_vec3(f, path, rows);
+  out = h5::read_vec3(f, path, rows);
+}
+void read_history_field(const h5::File& f, const std::string& path, hsize_t entries, std::vector<double>& out) {
+  if (!h5::exists(f, path)) return out.clear();
+  out = h5::read_array<double>(f, path, {entries});
 }
 
 HostHistory read_history(const h5::File& f, hsize_t n) {
@@ -85,8 +84,9 @@ HostHistory read_history(const h5::File& f, hsize_t n) {
     refuse(f.path(), "history has " + std::to_string(h.slots) + " slots per particle");
   const hsize_t slots = hsize_t(h.slots);
   h.partner = h5::read_array<ParticleId>(f, "history/partner", {n, slots});
-  h.tangential = read_springs(f, "history/tangential", n * slots);
-  h.rolling = read_springs(f, "history/rolling", n * slots);
+  for_each_history_field(h, [&](const char* name, unsigned, auto& field) {
+    read_history_field(f, std::string("history/") + name, n * slots, field);
+  });
   return h;
 }
 

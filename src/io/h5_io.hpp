@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/particle_store.hpp"
+#include "core/particle_fields.hpp"
 #include "core/vec3.hpp"
 #include "io/h5_check.hpp"
 
@@ -89,6 +89,15 @@ void write_vector(const File& f, const std::string& path, const std::vector<T>& 
 }
 void write_vec3(const File& f, const std::string& path, const std::vector<Vec3d>& v);             // (N, 3)
 void write_quaternions(const File& f, const std::string& path, const std::vector<Quaternion>& q);  // (N, 4) w x y z
+// One per-particle or per-contact field, in the shape its type has (N), (N, 3) or (N, 4).
+template <class T>
+void write_field(const File& f, const std::string& path, const std::vector<T>& v) {
+  write_vector(f, path, v);
+}
+inline void write_field(const File& f, const std::string& path, const std::vector<Vec3d>& v) { write_vec3(f, path, v); }
+inline void write_field(const File& f, const std::string& path, const std::vector<Quaternion>& v) {
+  write_quaternions(f, path, v);
+}
 
 // Shape of dataset `path`; FormatError when it is missing.
 std::vector<hsize_t> dims_of(const File& f, const std::string& path);
@@ -111,6 +120,17 @@ std::vector<T> read_array(const File& f, const std::string& path, const std::vec
 }
 std::vector<Vec3d> read_vec3(const File& f, const std::string& path, hsize_t n);
 std::vector<Quaternion> read_quaternions(const File& f, const std::string& path, hsize_t n);
+// The inverse of write_field: n rows into `out`.
+template <class T>
+void read_field(const File& f, const std::string& path, hsize_t n, std::vector<T>& out) {
+  out = read_array<T>(f, path, {n});
+}
+inline void read_field(const File& f, const std::string& path, hsize_t n, std::vector<Vec3d>& out) {
+  out = read_vec3(f, path, n);
+}
+inline void read_field(const File& f, const std::string& path, hsize_t n, std::vector<Quaternion>& out) {
+  out = read_quaternions(f, path, n);
+}
 
 // Scalar attributes of the object at `object` ("/" is the root).
 void write_attribute_raw(const File& f, const std::string& object, const std::string& name, hid_t memory_type,

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/simulation.hpp"
+#include "core/particle_snapshot.hpp"
 #include <optional>
 
 #include "io/snapshot_fields.hpp"

@@ -4,7 +4,7 @@
 // complete.
 #include <string>
 
-#include "engine/simulation.hpp"
+#include "core/particle_snapshot.hpp"
 
 namespace gs {
 

@@ -1,6 +1,6 @@
 #pragma once
-// Between a checkpoint file and the state a Simulation continues from.
-#include "engine/simulation.hpp"
+// Between a checkpoint file and the state a run continues from.
+#include "core/particle_snapshot.hpp"
 #include "io/checkpoint.hpp"
 
 namespace gs {

@@ -25,14 +25,12 @@ std::uint64_t state_digest(const ParticleSnapshot& s, const HostHistory& history
     if (!field.empty()) h.add_value(field[r]);
   };
   for (std::size_t r : order) {
-    add_row(s.id, r), add_row(s.material, r), add_row(s.marker, r);
-    add_row(s.radius, r), add_row(s.mass, r), add_row(s.inertia, r);
-    add_row(s.position, r), add_row(s.velocity, r), add_row(s.angular_velocity, r);
-    add_row(s.orientation, r), add_row(s.force, r), add_row(s.torque, r);
+    for_each_particle_field(s, [&](const char*, const auto& field) { add_row(field, r); });
+    add_row(s.force, r), add_row(s.torque, r);
     for (std::size_t k = 0; k < slots && !history.partner.empty(); ++k) {
       const std::size_t e = r * slots + k;
       h.add_value(history.partner[e]);
-      add_row(history.tangential, e), add_row(history.rolling, e);
+      for_each_history_field(history, [&](const char*, unsigned, const auto& field) { add_row(field, e); });
     }
   }
   return h.value();

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/simulation.hpp"
+#include "core/particle_snapshot.hpp"
 #include "io/snapshot_fields.hpp"
 #include "io/wall_surfaces.hpp"
 

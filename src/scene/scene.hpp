@@ -5,7 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "analysis/mixing_spec.hpp"
+#include "scene/mixing_spec.hpp"
+#include "core/materials.hpp"
 #include "core/types.hpp"
 #include "core/vec3.hpp"
 #include "walls/mesh.hpp"
@@ -16,25 +17,6 @@ namespace gs {
 // A bad scene: the message names the key and the line of the file.
 struct SceneError : std::runtime_error {
   using std::runtime_error::runtime_error;
-};
-
-struct MaterialSpec {
-  std::string name;
-  double density = 0;          // [kg/m^3]
-  double youngs_modulus = 0;   // [Pa], Hertz-Mindlin only
-  double poisson_ratio = 0;    // [-], Hertz-Mindlin only
-};
-
-// Contact parameters of a pair of materials as written in the scene.
-struct PairSpec {
-  int material_a = 0, material_b = 0;
-  double stiffness_normal = 0;       // linear model [N/m]
-  double stiffness_tangential = 0;   // linear model [N/m]
-  double stiffness_rolling = 0;      // rolling spring [N/m]
-  double restitution = 1;            // normal coefficient of restitution in (0,1]
-  double friction = 0;               // sliding friction mu >= 0
-  double rolling_friction = 0;       // rolling friction mu_r >= 0
-  double cohesion_energy_density = 0;// [N/m^2]
 };
 
 // One particle as created at t = 0.

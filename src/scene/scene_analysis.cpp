@@ -3,7 +3,6 @@
 #include <string>
 #include <vector>
 
-#include "analysis/mixing.hpp"
 #include "scene/scene_sections.hpp"
 
 namespace gs::scene_yaml {

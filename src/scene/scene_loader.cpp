@@ -5,8 +5,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "contact/contact_time.hpp"
-#include "contact/stable_step.hpp"
+#include "scene/scene_time_step.hpp"
+#include "contact/contact_models.hpp"
 #include "io/snapshot_fields.hpp"
 #include "neighbor/cell_grid.hpp"
 #include "scene/generators.hpp"
@@ -44,8 +44,7 @@ void parse_globals(const Map& top, SceneSpec& s) {
   box_corners(Map(top.get("domain"), {"min", "max"}), s.domain_min, s.domain_max);
   s.gravity = vec3_or(top, "gravity", Vec3d());
   if (top.has("contact_model"))
-    s.model = choice(top.get("contact_model"), {"linear", "hertz_mindlin"}) == "linear" ? ContactModel::linear
-                                                                                        : ContactModel::hertz_mindlin;
+    s.model = contact_model_named(choice(top.get("contact_model"), contact_model_names()));
   if (top.has("precision")) {
     const std::string p = choice(top.get("precision"), {"fp32", "fp64", "fp32_full"});
     s.precision = p == "fp64" ? Precision::fp64 : p == "fp32" ? Precision::fp32 : Precision::fp32_full;
@@ -74,7 +73,7 @@ void parse_globals(const Map& top, SceneSpec& s) {
         fail(list, cut(e.what(), 4 * kEchoLength));
       }
       // Contacts are counted in the contact history, which only these effects keep.
-      if (fields.has(SnapshotField::contact_count) && !uses_history(s.effects))
+      if (fields.has(SnapshotField::contact_count) && !keeps_history(s.model, s.effects))
         fail(list, "contact_count needs friction or rolling resistance (contact history); set effects.friction or "
                    "effects.rolling_resistance, or leave the field out");
     }
@@ -87,7 +86,7 @@ void parse_globals(const Map& top, SceneSpec& s) {
 
 void parse_materials(const Map& top, SceneSpec& s) {
   const Val list = top.get("materials");
-  const bool hertz = s.model == ContactModel::hertz_mindlin;
+  const bool hertz = with_contact_model(s.model, [](auto m) { return decltype(m)::kNeedsElasticConstants; });
   for_each_item(list, [&](const Val& item, std::size_t) {
     const Map m(item, {"name", "density", "youngs_modulus", "poisson_ratio"});
     MaterialSpec mat;
@@ -122,7 +121,7 @@ PairSpec parse_pair(const SceneSpec& s, const Map& m) {
       fail(names, "the pair [" + s.materials[p.material_a].name + ", " + s.materials[p.material_b].name +
                       "] is given twice");
 
-  const bool linear = s.model == ContactModel::linear;
+  const bool linear = with_contact_model(s.model, [](auto m) { return decltype(m)::kNeedsStiffness; });
   p.stiffness_normal = linear ? positive(m.get("stiffness_normal")) : number_or(m, "stiffness_normal", 0.0, positive);
   // k_t = 2/7 k_n gives a sphere the same tangential as normal oscillation period.
   p.stiffness_tangential = number_or(m, "stiffness_tangential", 2.0 / 7.0 * p.stiffness_normal, positive);

@@ -11,9 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "contact/contact_time.hpp"
+#include "scene/scene_time_step.hpp"
 #include "contact/restitution.hpp"
-#include "contact/stable_step.hpp"
 #include "scene/scene_loader.hpp"
 #include "support/support.hpp"
 

@@ -1,10 +1,12 @@
 // Pack and unpack: particles selected by index, with their contact history,
 // go through one message in backend memory and arrive bit for bit, on every
-// backend and for each history layout (friction, + rolling, fp32 and fp64).
+// backend and for each history layout (friction, + rolling, the hysteretic
+// model's peak overlaps; fp32 and fp64).
 #include <gtest/gtest.h>
 
 #include <cstring>
 
+#include "contact/contact_models.hpp"
 #include "engine/step_kernels.hpp"
 #include "support/support.hpp"
 
@@ -13,7 +15,12 @@ namespace {
 
 constexpr int kSlots = 4;
 
-ParticleRecords sample_records(std::size_t n, bool rolling) {
+// Values exact in fp32, so every precision carries them unchanged.
+void sample_value(Vec3d& v, double a, double b) { v = {a, -0.5 * b, 0.125}; }
+void sample_value(double& v, double a, double b) { v = a + 0.25 * b; }
+
+// n particles with every field, and the history fields `kept` (HistoryField bits).
+ParticleRecords sample_records(std::size_t n, unsigned kept) {
   ParticleRecords r;
   r.history.slots = kSlots;
   for (std::size_t i = 0; i < n; ++i) {
@@ -31,9 +38,11 @@ ParticleRecords sample_records(std::size_t n, bool rolling) {
     for (int s = 0; s < kSlots; ++s) {
       const bool used = (i + std::size_t(s)) % 3 != 0;
       r.history.partner.push_back(used ? ParticleId(5 * i + std::size_t(s)) : kNoPartner);
-      // Values exact in fp32, so every precision carries them unchanged.
-      r.history.tangential.emplace_back(0.25 * s + double(i), -0.5 * double(i), 0.125);
-      if (rolling) r.history.rolling.emplace_back(0.0625 * double(i), 0.75 * s, -1.0);
+      for_each_history_field(r.history, [&](const char*, unsigned bit, auto& field) {
+        if (!(kept & bit)) return;
+        field.emplace_back();
+        sample_value(field.back(), 0.25 * s + double(i) + bit, double(i));
+      });
     }
   }
   return r;
@@ -41,17 +50,7 @@ ParticleRecords sample_records(std::size_t n, bool rolling) {
 
 ParticleStore empty_store(Backend b) {
   ParticleStore s;
-  s.backend = b;
-  s.id = DeviceArray<ParticleId>(b);
-  s.material = DeviceArray<std::uint8_t>(b);
-  s.marker = DeviceArray<std::uint8_t>(b);
-  s.radius = DeviceArray<float>(b);
-  s.mass = DeviceArray<float>(b);
-  s.inertia = DeviceArray<float>(b);
-  s.position = DeviceArray<Vec3d>(b);
-  s.velocity = DeviceArray<Vec3d>(b);
-  s.angular_velocity = DeviceArray<Vec3d>(b);
-  s.orientation = DeviceArray<Quaternion>(b);
+  s.place_on(b);
   return s;
 }
 
@@ -72,22 +71,24 @@ bool same(const std::vector<T>& a, const std::vector<T>& b) {
 struct Case {
   Precision precision;
   unsigned effects;
+  ContactModel model = ContactModel::linear;
 };
 
 class MessageTest : public testing::TestWithParam<Backend> {
  protected:
   void round_trip(const Case& c) {
     const Backend b = GetParam();
-    const KernelChoice choice{b, c.precision, ContactModel::linear, c.effects};
-    const PairTableHost pairs = make_pair_table(test::base_scene(2500, 1e4, 0.5, 0.5));
-    auto from = make_step_kernels(choice, pairs, kSlots);
-    auto to = make_step_kernels(choice, pairs, kSlots);
-    const bool rolling = (c.effects & kRollingResistance) != 0;
-    const ParticleRecords all = sample_records(50, rolling);
+    const KernelChoice choice{b, c.precision, c.model, c.effects};
+    const SceneSpec scene = test::base_scene(2500, 1e4, 0.5, 0.5);
+    const ContactInputs pairs{scene.materials, scene.pairs, kSlots};
+    auto from = make_step_kernels(choice, pairs);
+    auto to = make_step_kernels(choice, pairs);
+    const unsigned kept = history_fields_kept(c.model, c.effects);
+    const ParticleRecords all = sample_records(50, kept);
     ParticleStore a = empty_store(b), z = empty_store(b);
     from->append(a, all, false);
     // z already holds particles: arrivals go after them.
-    const ParticleRecords first = sample_records(3, rolling);
+    const ParticleRecords first = sample_records(3, kept);
     to->append(z, first, false);
 
     const std::vector<Index> which{49, 3, 17, 0, 18, 31};
@@ -102,22 +103,17 @@ class MessageTest : public testing::TestWithParam<Backend> {
     ASSERT_EQ(z.n_owned, Index(3 + which.size()));
     std::vector<Index> arrived(which.size());
     for (std::size_t k = 0; k < which.size(); ++k) arrived[k] = Index(3 + k);
-    EXPECT_TRUE(same(picked(z.id.to_host(), arrived), picked(all.id, which)));
-    EXPECT_TRUE(same(picked(z.material.to_host(), arrived), picked(all.material, which)));
-    EXPECT_TRUE(same(picked(z.marker.to_host(), arrived), picked(all.marker, which)));
-    EXPECT_TRUE(same(picked(z.radius.to_host(), arrived), picked(all.radius, which)));
-    EXPECT_TRUE(same(picked(z.mass.to_host(), arrived), picked(all.mass, which)));
-    EXPECT_TRUE(same(picked(z.inertia.to_host(), arrived), picked(all.inertia, which)));
-    EXPECT_TRUE(same(picked(z.position.to_host(), arrived), picked(all.position, which)));
-    EXPECT_TRUE(same(picked(z.velocity.to_host(), arrived), picked(all.velocity, which)));
-    EXPECT_TRUE(same(picked(z.angular_velocity.to_host(), arrived), picked(all.angular_velocity, which)));
-    EXPECT_TRUE(same(picked(z.orientation.to_host(), arrived), picked(all.orientation, which)));
+    for_each_particle_field(z, all, [&](const char* name, const auto& field, const auto& sent) {
+      EXPECT_TRUE(same(picked(field.to_host(), arrived), picked(sent, which))) << name;
+    });
     const HostHistory got = to->history(z);
     EXPECT_TRUE(same(picked(got.partner, arrived, kSlots), picked(all.history.partner, which, kSlots)));
-    EXPECT_TRUE(same(picked(got.tangential, arrived, kSlots), picked(all.history.tangential, which, kSlots)));
-    if (rolling) {
-      EXPECT_TRUE(same(picked(got.rolling, arrived, kSlots), picked(all.history.rolling, which, kSlots)));
-    }
+    for_each_history_field(got, all.history, [&](const char* name, unsigned bit, const auto& field, const auto& sent) {
+      EXPECT_EQ(field.empty(), !(kept & bit)) << name;
+      if (kept & bit) {
+        EXPECT_TRUE(same(picked(field, arrived, kSlots), picked(sent, which, kSlots))) << name;
+      }
+    });
     // The particles that were there stay as they were.
     EXPECT_TRUE(same(picked(got.partner, {0, 1, 2}, kSlots), first.history.partner));
 
@@ -135,6 +131,11 @@ class MessageTest : public testing::TestWithParam<Backend> {
 
 TEST_P(MessageTest, FrictionFp32) { round_trip({Precision::fp32, kFriction}); }
 TEST_P(MessageTest, FrictionAndRollingFp64) { round_trip({Precision::fp64, kFriction | kRollingResistance}); }
+// The hysteretic model's peak overlaps, alone and with the springs.
+TEST_P(MessageTest, PeakOverlapFp32) { round_trip({Precision::fp32, 0, ContactModel::hysteretic_linear}); }
+TEST_P(MessageTest, PeakOverlapAndFrictionFp64) {
+  round_trip({Precision::fp64, kFriction, ContactModel::hysteretic_linear});
+}
 
 INSTANTIATE_TEST_SUITE_P(Backends, MessageTest, testing::ValuesIn(test::test_backends()), test::backend_label);
 

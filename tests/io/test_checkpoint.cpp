@@ -76,8 +76,9 @@ void expect_bitwise_equal(const Checkpoint& a, const Checkpoint& b) {
   EXPECT_TRUE(same_bytes(p.torque, q.torque));
   EXPECT_EQ(a.history.slots, b.history.slots);
   EXPECT_TRUE(same_bytes(a.history.partner, b.history.partner));
-  EXPECT_TRUE(same_bytes(a.history.tangential, b.history.tangential));
-  EXPECT_TRUE(same_bytes(a.history.rolling, b.history.rolling));
+  for_each_history_field(a.history, b.history, [](const char* name, unsigned, const auto& x, const auto& y) {
+    EXPECT_TRUE(same_bytes(x, y)) << name;
+  });
   EXPECT_TRUE(same_walls(a.walls, b.walls));
   EXPECT_EQ(a.scene_hash, b.scene_hash);
   EXPECT_EQ(a.rank_count, b.rank_count);
@@ -119,6 +120,26 @@ TEST(Checkpoint, RoundTripIsBitwise) {
   EXPECT_TRUE(back.history.rolling.empty());
   EXPECT_EQ(checkpoint_checksum(back), checkpoint_checksum(c));
   EXPECT_EQ(test::read_h5_attribute<std::uint64_t>(path, "/", "checksum", H5T_NATIVE_UINT64), checkpoint_checksum(c));
+}
+
+// The hysteretic model's peak overlaps: written and read back bit for bit;
+// a run that does not keep them writes no dataset, so its file (and its
+// checksum) is what format 2 was before the field existed.
+TEST(Checkpoint, PeakOverlapsRoundTripAndAreAbsentWhenNotKept) {
+  ScratchDir dir;
+  Checkpoint c = sample_checkpoint();
+  for (std::size_t e = 0; e < c.history.partner.size(); ++e) c.history.peak_overlap.push_back(1e-7 * double(e) / 3);
+  const std::string with = dir.file("with.h5"), without = dir.file("without.h5");
+  write_checkpoint(with, c);
+  const Checkpoint back = read_checkpoint(with);
+  expect_bitwise_equal(c, back);
+  EXPECT_EQ(back.history.peak_overlap.size(), c.history.partner.size());
+  write_checkpoint(without, sample_checkpoint());
+  EXPECT_TRUE(read_checkpoint(without).history.peak_overlap.empty());
+  const hid_t f = H5Fopen(without.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  EXPECT_EQ(H5Lexists(f, "history/peak_overlap", H5P_DEFAULT), 0);
+  ASSERT_GE(H5Fclose(f), 0);
 }
 
 TEST(Checkpoint, RoundTripWithoutParticlesOrHistory) {

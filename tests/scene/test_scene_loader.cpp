@@ -4,7 +4,7 @@
 #include <tuple>
 #include <fstream>
 
-#include "contact/contact_time.hpp"
+#include "scene/scene_time_step.hpp"
 #include "scene/scene_loader.hpp"
 
 namespace gs {

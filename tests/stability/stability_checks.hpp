@@ -14,8 +14,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "contact/contact_time.hpp"
-#include "contact/stable_step.hpp"
+#include "scene/scene_time_step.hpp"
 #include "scene/generators.hpp"
 #include "support/support.hpp"
 #include "walls/wall_geometry.hpp"

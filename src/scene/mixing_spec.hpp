@@ -42,6 +42,10 @@ struct MixingSpec {
   std::string output = "mixing.csv";  // CSV log; a relative path lies in output.directory
 };
 
+// Samples on a ring of radius r: equidistant, about `spacing` apart along the
+// circle; a ring of radius 0 is the single sample on the axis.
+int ring_sample_count(double r, double spacing);
+
 // Radius of a sample (one layer's cylinder) of `height` holding `mass` of powder at
 // `bulk_density`: m = rho_bulk pi a^2 h.
 double sample_radius_for_mass(double mass, double bulk_density, double height);

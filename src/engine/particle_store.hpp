@@ -1,0 +1,66 @@
+#pragma once
+// All particle state of one rank as a structure of arrays in backend memory,
+// one array per field of core/particle_fields.hpp (which says the precision
+// of each). Owned particles occupy [0, n_owned); ghost copies of neighbours'
+// particles follow in [n_owned, n_owned + n_ghost).
+#include <cstdint>
+#include <type_traits>
+
+#include "backend/device_array.hpp"
+#include "core/history_layout.hpp"
+#include "core/particle_fields.hpp"
+
+namespace gs {
+
+template <class Real>
+struct ForceArrays {
+  DeviceArray<Vec3<Real>> force;   // contact force [N]
+  DeviceArray<Vec3<Real>> torque;  // contact torque [N m]
+};
+
+// Contact history of up to `capacity` particles, laid out as `strides` says
+// (core/history_layout.hpp; the execution policy picks the order). A field
+// the run does not keep stays empty.
+template <class Real>
+struct ContactHistory {
+  int slots = 0;
+  std::size_t capacity = 0;
+  HistoryStrides strides;
+  DeviceArray<ParticleId> partner;  // kNoPartner marks a free slot
+#define GS_DECLARE_FIELD(name, value, bit) DeviceArray<value<Real>> name;
+  GS_HISTORY_FIELDS(GS_DECLARE_FIELD)
+#undef GS_DECLARE_FIELD
+};
+
+struct ParticleStore {
+  Backend backend = Backend::cpu;
+  Index n_owned = 0;
+  Index n_ghost = 0;
+
+#define GS_DECLARE_FIELD(name, type) DeviceArray<type> name;
+  GS_PARTICLE_FIELDS(GS_DECLARE_FIELD)
+#undef GS_DECLARE_FIELD
+
+  Index size() const { return n_owned + n_ghost; }
+
+  // Empty arrays in memory of backend b.
+  void place_on(Backend b) {
+    backend = b;
+    for_each_particle_field(*this, [b](const char*, auto& a) { a = std::decay_t<decltype(a)>(b); });
+  }
+  // Sets the length of every array (contents up to min(old, n) are kept).
+  void resize_arrays(std::size_t n) {
+    for_each_particle_field(*this, [n](const char*, auto& a) { a.resize(n); });
+  }
+  void drop_ghosts() {
+    n_ghost = 0;
+    resize_arrays(std::size_t(n_owned));
+  }
+  std::size_t bytes() const {
+    std::size_t total = 0;
+    for_each_particle_field(*this, [&](const char*, const auto& a) { total += a.bytes(); });
+    return total;
+  }
+};
+
+}  // namespace gs
