@@ -31,6 +31,7 @@ LAYERS = [
     "engine/instances",
     "decomposition",
     "comm",
+    "run",
     "app",
 ]
 RANK = {name: k for k, name in enumerate(LAYERS)}

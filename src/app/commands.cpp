@@ -5,22 +5,10 @@
 #include <stdexcept>
 
 #include "engine/memory_estimate.hpp"
+#include "run/driver.hpp"
 #include "scene/scene_loader.hpp"
 
 namespace gs {
-
-std::string human_bytes(double b) {
-  const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB"};
-  int u = 0;
-  while (b >= 1024 && u < 4) { b /= 1024; ++u; }
-  char s[32];
-  std::snprintf(s, sizeof(s), "%.1f %s", b, units[u]);
-  return s;
-}
-
-void print_warnings(const SceneSpec& scene) {
-  for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-}
 
 int command_check(const std::vector<std::string>& args) {
   if (args.size() != 2) throw std::invalid_argument("usage: grainstorm check SCENE");

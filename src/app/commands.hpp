@@ -13,8 +13,4 @@ int command_check(const std::vector<std::string>& args);
 int command_info(const std::vector<std::string>& args);    // app/command_info.cpp
 int command_mixing(const std::vector<std::string>& args);  // app/command_mixing.cpp
 
-std::string human_bytes(double bytes);  // "1.5 MiB"
-// The scene's warnings (SceneSpec::warnings), one "warning: ..." line each on stderr.
-void print_warnings(const SceneSpec& scene);
-
 }  // namespace gs

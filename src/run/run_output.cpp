@@ -1,4 +1,4 @@
-#include "app/run_output.hpp"
+#include "run/run_output.hpp"
 
 #include <algorithm>
 #include <cstdarg>

@@ -1,4 +1,4 @@
-#include "app/output_directory.hpp"
+#include "run/output_directory.hpp"
 
 #include <cstdio>
 #include <filesystem>

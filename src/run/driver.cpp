@@ -1,0 +1,353 @@
+#include "run/driver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include "run/output_directory.hpp"
+#include "run/run_output.hpp"
+#include "engine/schedule.hpp"
+#include "backend/memory.hpp"
+#include "comm/domain_exchange.hpp"
+#include "comm/rank_agreement.hpp"
+#include "comm/device_link.hpp"
+#include "engine/simulation.hpp"
+#include "io/fnv1a.hpp"
+#include "io/restart.hpp"
+#include "scene/scene_loader.hpp"
+
+namespace gs {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+
+}  // namespace
+
+std::string human_bytes(double b) {
+  const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB"};
+  int u = 0;
+  while (b >= 1024 && u < 4) { b /= 1024; ++u; }
+  char s[32];
+  std::snprintf(s, sizeof(s), "%.1f %s", b, units[u]);
+  return s;
+}
+
+void print_warnings(const SceneSpec& scene) {
+  for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+}
+
+void check_request(const RunRequest& r) {
+  if (r.scene.empty()) throw std::invalid_argument("no scene file given");
+  if (r.steps < -1) throw std::invalid_argument("--steps must be >= 0");
+  if (r.exchange != "auto" && r.exchange != "device" && r.exchange != "host")
+    throw std::invalid_argument("--exchange must be auto, device or host, got " + r.exchange);
+  if (r.exchange == "device" && r.backend != Backend::cuda)
+    throw std::invalid_argument("--exchange device needs --backend cuda");
+  if (r.overwrite && !r.restart.empty())
+    throw std::invalid_argument("--overwrite and --restart exclude each other: a restart continues the run in its "
+                                "output directory");
+}
+
+namespace {
+OutputDirectoryUse directory_use(const RunRequest& a) {
+  if (!a.restart.empty()) return OutputDirectoryUse::restart;
+  return a.overwrite ? OutputDirectoryUse::overwrite : OutputDirectoryUse::fresh;
+}
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  if (!in.good() && !in.eof()) throw std::runtime_error("cannot read " + path);
+  return ss.str();
+}
+
+// Runs `phase`, which must not communicate, on this rank; then every rank
+// learns whether it failed on any, and if so all throw the same RankFailure
+// together (none goes on into a collective that another never reaches).
+template <class Phase>
+void on_every_rank(Transport& transport, Phase&& phase) {
+  std::string error;
+  try {
+    phase();
+  } catch (const std::exception& e) {
+    error = e.what();
+    if (error.empty()) error = "unknown error";
+  }
+  throw_if_any_failed(transport, error);
+}
+
+// Ranks started with different scenes or options (an MPMD launch, a scene
+// file edited while the job started) would split different particles, or
+// enter different collectives: every rank must run what rank 0 runs.
+void expect_same_run_everywhere(Transport& transport, const RunRequest& a, std::uint64_t hash) {
+  const std::string mine = std::to_string(hash) + " " + std::to_string(a.steps) + " " + backend_name(a.backend) + " " +
+                           a.exchange + " " + (a.restart.empty() ? "new" : "restart");
+  const Bytes first = transport.broadcast(Bytes(mine.begin(), mine.end()), 0);
+  std::string error;
+  if (std::string(first.begin(), first.end()) != mine)
+    error = "runs " + a.scene + " (scene hash, --steps, --backend, --exchange or --restart) differently from rank 0: "
+            "every rank must run the same scene with the same options";
+  throw_if_any_failed(transport, error);
+}
+
+long long steps_per(double interval, double dt) {
+  return interval > 0 ? std::max(1LL, std::llround(interval / dt)) : 0;
+}
+
+
+// Progress to stderr at most every two seconds: step, time, rate, ETA. Only
+// rank 0 prints it (every rank would repeat the same line).
+class Progress {
+ public:
+  Progress(long long first, long long total, long long particles, bool prints)
+      : first_(first), total_(total), particles_(particles), prints_(prints) {}
+  void update(const Simulation& sim) {
+    if (!prints_) return;
+    const auto now = Clock::now();
+    if (std::chrono::duration<double>(now - last_).count() < 2.0 && sim.step_count() < total_) return;
+    last_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double done = double(sim.step_count() - first_);
+    const double rate = elapsed > 0 ? done * double(particles_) / elapsed : 0;
+    const double eta = done > 0 ? elapsed * double(total_ - sim.step_count()) / done : 0;
+    std::fprintf(stderr, "step %lld/%lld  t = %.6g s  %.3g particle-steps/s  ETA %.0f s\n", sim.step_count(), total_,
+                 sim.time(), rate, eta);
+  }
+
+ private:
+  long long first_, total_, particles_;
+  bool prints_;
+  Clock::time_point start_ = Clock::now(), last_ = start_;
+};
+
+// GPU ranks move particles over NCCL when asked to, or by default when it is
+// built in and every rank has a GPU of its own (NCCL refuses two ranks on one
+// device). Collective.
+std::shared_ptr<DomainExchange> with_link(std::shared_ptr<DomainExchange> exchange, const RunRequest& a,
+                                          Transport& transport, bool own_gpu) {
+  bool device = a.exchange == "device";
+  if (a.exchange == "auto" && a.backend == Backend::cuda && nccl_available())
+    device = transport.min(own_gpu ? 1 : 0) == 1;
+  if (exchange && device) exchange->use_device_link(make_nccl_link(transport));
+  return exchange;
+}
+
+// Collective: the exchange's device link, the first forces.
+std::unique_ptr<Simulation> start(const SceneSpec& scene, const RunRequest& a, Transport& transport,
+                                  std::shared_ptr<DomainExchange> split, const std::optional<RestartState>& restart,
+                                  bool own_gpu) {
+  RunOptions options;
+  options.backend = a.backend;
+  std::shared_ptr<DomainExchange> exchange = split ? with_link(split, a, transport, own_gpu) : nullptr;
+  if (!restart) return std::make_unique<Simulation>(scene, options, exchange);
+  return std::make_unique<Simulation>(scene, options, exchange, *restart);
+}
+
+// Ranks that read their checkpoint from different copies (node-local
+// scratch) must have read the same step.
+void expect_same_step_everywhere(Transport& transport, const std::string& path, long long step) {
+  const Bytes first = transport.broadcast(Bytes(reinterpret_cast<const char*>(&step),
+                                                reinterpret_cast<const char*>(&step) + sizeof(step)), 0);
+  long long step_0 = 0;
+  std::memcpy(&step_0, first.data(), sizeof(step_0));
+  throw_if_any_failed(transport, step == step_0 ? "" : "checkpoint " + path + " is at step " + std::to_string(step) +
+                                                          ", rank 0's at step " + std::to_string(step_0));
+}
+
+// SIGTERM/SIGUSR1 read at every step without waiting on the slowest rank:
+// each step completes the reduction the step before started (done by then)
+// and starts the next, so every rank learns of a signal to any rank at the
+// same step, at most two steps after it arrived. A batch system, or mpiexec,
+// kills the ranks a fixed time after the signal, whatever the length of a step
+// or of a chunk between outputs.
+class StopAgreement {
+ public:
+  StopAgreement(Transport& transport, std::function<bool()> stop_requested)
+      : transport_(transport), stop_requested_(std::move(stop_requested)) {}
+  StopAgreement(const StopAgreement&) = delete;
+  StopAgreement& operator=(const StopAgreement&) = delete;
+  ~StopAgreement() {
+    try {
+      settle();
+    } catch (...) {  // the run is ending with an error already
+    }
+  }
+  // After each step (collective): true when the run must stop now.
+  bool after_step() {
+    if (settle()) return true;
+    transport_.start_min(stop_requested_ && stop_requested_() ? 0 : 1);
+    pending_ = true;
+    return false;
+  }
+  // Completes the outstanding reduction, so none is left across the other
+  // collectives between steps; true once any rank has asked to stop.
+  bool settle() {
+    if (pending_) {
+      pending_ = false;
+      stopped_ = transport_.finish_min() == 0 || stopped_;
+    }
+    return stopped_;
+  }
+
+ private:
+  Transport& transport_;
+  std::function<bool()> stop_requested_;  // this rank's signal; may be empty
+  bool pending_ = false, stopped_ = false;
+};
+
+int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, Simulation& sim, RunOutput& out,
+            long long total, long long particles) {
+  RankExchange* exchange = sim.exchange();
+  const long long every = scene.output.interval > 0 ? steps_per(scene.output.interval, scene.time_step) : total;
+  const long long checkpoint_every = steps_per(scene.output.checkpoint_interval, scene.time_step);
+  const double checkpoint_seconds = 60.0 * scene.output.checkpoint_minutes;
+  const bool checkpointing = checkpoint_every > 0 || checkpoint_seconds > 0;
+  // Mixing analysis at start, start + every, ...
+  const Schedule mixing = scene.mixing ? Schedule{scene.mixing->start, scene.mixing->every, scene.time_step}
+                                       : Schedule{};
+  // Marking is a function of the positions at its step, so doing it again
+  // after a restart at that very step changes nothing.
+  const long long mark_step = scene.marking ? std::llround(scene.marking->time / scene.time_step) : -1;
+  auto mark_if_due = [&](long long step) {
+    if (step != mark_step) return;
+    sim.mark(*scene.marking);
+    out.log("step %lld: particles marked %d / %d by their side of the plane\n", step, int(scene.marking->front),
+            int(scene.marking->back));
+  };
+  const auto t0 = Clock::now();
+  auto last_checkpoint = t0;
+  const long long first_step = sim.step_count();  // after a restart, the rate counts this run's steps only
+  Progress progress(first_step, total, particles, transport.rank() == 0);
+  StopAgreement stop_signal(transport, a.stop_requested);
+  sim.check_fault();  // in the first forces
+  if (a.restart.empty()) mark_if_due(0);
+  if (a.restart.empty()) out.snapshot(sim);
+  if (a.restart.empty() && mixing.due(0)) out.mixing(sim);
+  while (sim.step_count() < total) {
+    const long long step = sim.step_count();
+    long long chunk = std::min({every > 0 ? every - step % every : total, total - step, 200LL});
+    if (checkpoint_every > 0) chunk = std::min(chunk, checkpoint_every - step % checkpoint_every);
+    if (mixing.every > 0) chunk = std::min(chunk, mixing.next_after(step) - step);
+    if (mark_step > step) chunk = std::min(chunk, mark_step - step);
+    sim.run(chunk, [&] { return stop_signal.after_step(); });
+    mark_if_due(sim.step_count());
+    progress.update(sim);
+    const long long now = sim.step_count();
+    if ((every > 0 && now % every == 0) || now == total) out.snapshot(sim);
+    if (mixing.due(now)) out.mixing(sim);
+    const bool wall_due = checkpoint_seconds > 0 &&
+                          std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >= checkpoint_seconds;
+    // Every rank must agree before a collective checkpoint or a stop.
+    const bool stop = stop_signal.settle();
+    const bool due = (checkpoint_every > 0 && now % checkpoint_every == 0) || transport.min(wall_due ? 0 : 1) == 0;
+    if (due || stop || (checkpointing && now == total)) {
+      out.checkpoint(sim);
+      last_checkpoint = Clock::now();
+    }
+    if (stop) {
+      out.log("stopped by a signal at step %lld (t = %.6g s): the run is not complete; restart with --restart\n", now,
+              sim.time());
+      return 3;
+    }
+  }
+  const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+  out.log("done: %lld steps, t = %.6g s, %.3g particle-steps/s\n", total, sim.time(),
+          wall > 0 ? double(sim.step_count() - first_step) * double(particles) / wall : 0.0);
+  if (exchange) out.log("decomposition at the end: %s\n", exchange->describe().c_str());
+  const StepTimings t = sim.timings();
+  out.log("time per phase (s, rank 0): integration %.3f, neighbour build %.3f, contact forces %.3f, exchange %.3f, "
+          "output %.3f, total wall %.3f\n",
+          t.integrate, t.neighbours, t.forces, t.exchange, wall - (t.integrate + t.neighbours + t.forces + t.exchange),
+          wall);
+  if (exchange) {
+    const ExchangeSplit x = exchange->split();
+    const double sum = x.total() > 0 ? x.total() : 1;
+    out.log("exchange split (rank 0, timed steps): route %.0f%%, pack %.0f%%, transfer and waiting %.0f%%, "
+            "unpack %.0f%%\n", 100 * x.route / sum, 100 * x.pack / sum, 100 * x.transfer / sum, 100 * x.unpack / sum);
+  }
+  out.log("peak %s memory (rank 0): %s\n", backend_name(sim.backend()),
+          human_bytes(double(backend_peak_bytes(sim.backend()))).c_str());
+  return 0;
+}
+
+}  // namespace
+
+int run_scene(const RunRequest& request, Transport& transport) {
+  // Each phase a rank can fail alone ends with every rank agreeing on it.
+  const RunRequest& a = request;
+  std::optional<SceneSpec> loaded;
+  std::uint64_t hash = 0;
+  on_every_rank(transport, [&] {
+    check_request(a);
+    loaded = load_scene(a.scene);
+    hash = scene_hash(file_text(a.scene));
+  });
+  const SceneSpec& scene = *loaded;
+  expect_same_run_everywhere(transport, a, hash);
+  if (transport.rank() == 0) print_warnings(scene);
+  const std::string directory = a.out.empty() ? scene.output.directory : a.out;
+  // Only rank 0 writes, so only its view of the directory counts.
+  on_every_rank(transport, [&] {
+    if (transport.rank() == 0) check_output_directory(directory, directory_use(a));
+  });
+  const long long total = a.steps >= 0 ? a.steps : std::llround(scene.duration / scene.time_step);
+  bool own_gpu = false;
+  std::optional<RestartState> restart;
+  std::shared_ptr<DomainExchange> split;
+  on_every_rank(transport, [&] {
+    own_gpu = a.backend == Backend::cuda && select_cuda_device(transport.local_rank());
+    if (!a.restart.empty()) {
+      CheckpointExpectations expect;
+      expect.scene_hash = hash;
+      restart = restart_state(read_checkpoint(a.restart, expect));
+    }
+    if (transport.size() > 1)
+      split = restart ? make_domain_exchange(scene, transport, restart->particles.position)
+                      : make_domain_exchange(scene, transport);
+  });
+  if (restart) expect_same_step_everywhere(transport, a.restart, restart->step);
+  // Collective from here on: an error on one rank alone in the middle of an
+  // exchange can only be reported by ending every rank (main.cpp).
+  std::unique_ptr<Simulation> sim = start(scene, a, transport, split, restart, own_gpu);
+  restart.reset();  // the simulation holds the state now
+  RankExchange* exchange = sim->exchange();
+  std::unique_ptr<RunOutput> output;
+  on_every_rank(transport, [&] {
+    if (transport.rank() == 0) prepare_output_directory(directory, directory_use(a), scene, sim->step_count());
+    output = std::make_unique<RunOutput>(scene, directory, transport, hash);
+  });
+  RunOutput& out = *output;
+  const long long particles =
+      exchange ? exchange->total(sim->particle_count()) : sim->particle_count();
+  out.log("grainstorm %s: %s, %lld particles, backend %s, %d rank%s, dt = %.4g s (contact time %.4g s), steps %lld to %lld\n",
+          GS_VERSION, a.scene.c_str(), particles, backend_name(a.backend), transport.size(),
+          transport.size() > 1 ? "s" : "", scene.time_step, scene.contact_time, sim->step_count(), total);
+  if (!a.restart.empty()) {
+    out.resume(sim->step_count());
+    out.log("restarted from %s at step %lld\n", a.restart.c_str(), sim->step_count());
+  }
+  if (exchange) out.log("decomposition: %s\n", exchange->describe().c_str());
+  try {
+    return advance(scene, a, transport, *sim, out, total, particles);
+  } catch (const SimulationFault& fault) {
+    // Every rank has the same fault (agreed in check_fault): log it and keep
+    // the state it was found in.
+    out.log("run stopped by a fault: %s\n", fault.what());
+    out.fault_snapshot(*sim);
+    throw;
+  } catch (const RankFailure& failure) {  // an output rank 0 could not write
+    out.log("run stopped by an error: %s\n", failure.what());
+    throw;
+  }
+}
+
+}  // namespace gs
