@@ -2,7 +2,8 @@
 # One session on a GPU machine: build with CUDA, run the whole test suite on
 # both backends, compare CPU and GPU runs of the demo, then the benchmarks.
 # Results go to $OUT (default ./device_out). Usage, from the repository root:
-#   [TESTS_REGEX=re] [TESTS_EXCLUDE=re] bench/device_session.sh [all|tests|bench|baseline|effects|mixer|mixprofile|mixacc|accuracy|output|scaling][,...]
+#   [TESTS_REGEX=re] [TESTS_EXCLUDE=re] [BUILD_TARGET=t] bench/device_session.sh [all|tests|bench|baseline|refactor|effects|mixer|mixprofile|mixacc|accuracy|output|scaling][,...]
+# BUILD_TARGET builds only that target (e.g. settle_bench) instead of everything.
 # METIS and yaml-cpp may be carried as unpacked Debian packages in carry/root
 # (see docs/PERFORMANCE.md) when the machine lacks them.
 set -uo pipefail
@@ -25,7 +26,8 @@ log=$OUT/session.log
   git status --short 2>/dev/null | head -20
 } > "$log" 2>&1
 cmake -S . -B build-gpu -DCMAKE_BUILD_TYPE=Release -DGS_ENABLE_CUDA=ON "${extra[@]}" >> "$log" 2>&1 &&
-  cmake --build build-gpu -j 16 >> "$log" 2>&1 || { echo "BUILD FAILED" >> "$log"; tail -50 "$log"; exit 1; }
+  cmake --build build-gpu -j 16 ${BUILD_TARGET:+--target $BUILD_TARGET} >> "$log" 2>&1 ||
+  { echo "BUILD FAILED" >> "$log"; tail -50 "$log"; exit 1; }
 echo "build ok" >> "$log"
 
 wants() { [[ ,$what, == *,all,* || ,$what, == *,$1,* ]]; }
@@ -73,6 +75,32 @@ if wants baseline && [[ -d carry/base ]]; then
     done
   } > "$OUT/baseline.log" 2>&1
   cat "$OUT/baseline.log" >> "$log"
+fi
+
+if wants refactor && [[ -d carry/base ]]; then
+  # A change that must not change results or speed: the tree at an earlier
+  # commit (carry/base, as for baseline) against this one, alternately, at 4e6
+  # and 16e6 frictional particles, each run ending with its state digest
+  # (the same digests: the same bits on the GPU).
+  cmake -S carry/base -B build-base -DCMAKE_BUILD_TYPE=Release -DGS_ENABLE_CUDA=ON "${extra[@]}" >> "$log" 2>&1 &&
+    cmake --build build-base -j 16 --target settle_bench >> "$log" 2>&1 || echo "BASE BUILD FAILED" >> "$log"
+  {
+    for round in 1 2 3; do
+      for b in build-base build-gpu; do
+        for n in 4000000 16000000; do
+          echo "== $b round $round: n $n"
+          $b/bench/settle_bench --backend cuda --n $n --steps 200 --effects friction --digest yes
+        done
+      done
+    done
+    for b in build-base build-gpu; do
+      for args in "--effects rolling" "--model hertz --effects friction" "--effects none --precision fp64"; do
+        echo "== $b digest: $args"
+        $b/bench/settle_bench --backend cuda --n 1000000 --steps 100 $args --digest yes
+      done
+    done
+  } > "$OUT/refactor.log" 2>&1
+  cat "$OUT/refactor.log" >> "$log"
 fi
 
 if wants effects; then
