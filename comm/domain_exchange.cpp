@@ -56,7 +56,7 @@ std::vector<int> DomainExchange::all_other_ranks() const {
   return r;
 }
 
-void DomainExchange::lap(StepKernels& k, double ExchangeSplit::*phase) {
+void DomainExchange::lap(ParticleMovement& k, double ExchangeSplit::*phase) {
   if (!timed_) return;
   k.synchronize();
   const auto now = std::chrono::steady_clock::now();
@@ -84,7 +84,7 @@ ParticleRouter& DomainExchange::router(const ParticleStore& s, const std::vector
 // the payloads over the device link when there is one (they never leave
 // backend memory), else through the host with their headers. Leaves what
 // arrived from peers[p] in inbox_[p]; returns the headers (count 0: none).
-std::vector<MessageHeader> DomainExchange::trade(StepKernels& k, const ParticleStore& s,
+std::vector<MessageHeader> DomainExchange::trade(ParticleMovement& k, const ParticleStore& s,
                                                  const std::vector<int>& peers, bool with_history) {
   const std::size_t n = peers.size();
   while (outbox_.size() < n) {
@@ -133,14 +133,14 @@ std::vector<MessageHeader> DomainExchange::trade(StepKernels& k, const ParticleS
 }
 
 // Appends the particles that arrived, in peer order.
-void DomainExchange::unpack(StepKernels& k, ParticleStore& s, const std::vector<MessageHeader>& headers,
+void DomainExchange::unpack(ParticleMovement& k, ParticleStore& s, const std::vector<MessageHeader>& headers,
                             bool as_ghosts) {
   for (std::size_t p = 0; p < headers.size(); ++p)
     if (headers[p].count > 0) k.unpack(s, headers[p], inbox_[p].data(), as_ghosts);
   lap(k, &ExchangeSplit::unpack);
 }
 
-void DomainExchange::send_to_owners(ParticleStore& s, StepKernels& k, const std::vector<int>& peers) {
+void DomainExchange::send_to_owners(ParticleStore& s, ParticleMovement& k, const std::vector<int>& peers) {
   s.drop_ghosts();
   last_lap_ = std::chrono::steady_clock::now();
   router(s, peers).tag_owners(s);
@@ -156,11 +156,11 @@ void DomainExchange::send_to_owners(ParticleStore& s, StepKernels& k, const std:
   unpack(k, s, arrived, false);
 }
 
-void DomainExchange::migrate(ParticleStore& s, StepKernels& k) {
+void DomainExchange::migrate(ParticleStore& s, ParticleMovement& k) {
   send_to_owners(s, k, peers_);
 }
 
-void DomainExchange::refresh_ghosts(ParticleStore& s, StepKernels& k) {
+void DomainExchange::refresh_ghosts(ParticleStore& s, ParticleMovement& k) {
   s.drop_ghosts();
   last_lap_ = std::chrono::steady_clock::now();
   // Decomposition::neighbours() holds every rank within the halo of an owned
@@ -170,7 +170,7 @@ void DomainExchange::refresh_ghosts(ParticleStore& s, StepKernels& k) {
   unpack(k, s, trade(k, s, peers_, false), true);
 }
 
-bool DomainExchange::rebalance(ParticleStore& s, StepKernels& k) {
+bool DomainExchange::rebalance(ParticleStore& s, ParticleMovement& k) {
   if (ranks() == 1) return false;
   std::vector<std::int64_t> loads(std::size_t(ranks()), 0);
   loads[std::size_t(rank())] = s.n_owned;

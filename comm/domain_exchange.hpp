@@ -2,7 +2,7 @@
 // RankExchange over a Transport and a Decomposition: migration of particles
 // (with contact history) to their owners, ghost copies for the neighbours,
 // re-balancing, and agreement on faults. Particles are packed and unpacked by
-// the backend's kernels (StepKernels::pack / unpack), and who goes where is
+// the backend's kernels (ParticleMovement::pack / unpack), and who goes where is
 // decided by the backend's ParticleRouter; the host only moves the messages.
 #include <chrono>
 #include <memory>
@@ -25,9 +25,9 @@ class DomainExchange final : public RankExchange {
   int rank() const override { return transport_.rank(); }
   int ranks() const override { return transport_.size(); }
   bool owns(const Vec3d& x) const override { return decomposition_->owner(x) == rank(); }
-  void migrate(ParticleStore& s, StepKernels& k) override;
-  void refresh_ghosts(ParticleStore& s, StepKernels& k) override;
-  bool rebalance(ParticleStore& s, StepKernels& k) override;
+  void migrate(ParticleStore& s, ParticleMovement& k) override;
+  void refresh_ghosts(ParticleStore& s, ParticleMovement& k) override;
+  bool rebalance(ParticleStore& s, ParticleMovement& k) override;
   std::string first_fault(const std::string& local) override;
   long long total(long long local) override;
   void sum(std::vector<double>& values) override { transport_.sum(values); }
@@ -43,15 +43,15 @@ class DomainExchange final : public RankExchange {
   bool has_device_link() const { return link_ != nullptr; }
 
  private:
-  void send_to_owners(ParticleStore& s, StepKernels& k, const std::vector<int>& peers);
+  void send_to_owners(ParticleStore& s, ParticleMovement& k, const std::vector<int>& peers);
   // The router, on the store's backend, with the current map and these peers.
   ParticleRouter& router(const ParticleStore& s, const std::vector<int>& peers);
-  std::vector<MessageHeader> trade(StepKernels& k, const ParticleStore& s, const std::vector<int>& peers,
+  std::vector<MessageHeader> trade(ParticleMovement& k, const ParticleStore& s, const std::vector<int>& peers,
                                    bool with_history);
-  void unpack(StepKernels& k, ParticleStore& s, const std::vector<MessageHeader>& headers, bool as_ghosts);
+  void unpack(ParticleMovement& k, ParticleStore& s, const std::vector<MessageHeader>& headers, bool as_ghosts);
   // On timed calls: waits for the device and charges the time since the
   // previous lap to `phase`.
-  void lap(StepKernels& k, double ExchangeSplit::*phase);
+  void lap(ParticleMovement& k, double ExchangeSplit::*phase);
   std::vector<int> all_other_ranks() const;
 
   Transport& transport_;

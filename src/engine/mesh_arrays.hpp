@@ -2,7 +2,7 @@
 // The scene's triangle meshes in a backend's memory, and the per-particle
 // loads on them (walls/mesh.hpp has the layout). Topology, reference vertices,
 // materials and bins are uploaded once; every step the meshes move, kernels
-// pose the vertices from the reference (StepKernelsImpl::set_mesh_pose).
+// pose the vertices from the reference (ForceComputer::set_mesh_pose).
 // Empty, and never read by a kernel, when the scene has none.
 #include <vector>
 

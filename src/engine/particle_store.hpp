@@ -36,6 +36,9 @@ struct ParticleStore {
   Backend backend = Backend::cpu;
   Index n_owned = 0;
   Index n_ghost = 0;
+  // Raised whenever particles are added, removed or reordered: a neighbour
+  // list built at an older revision no longer describes the store.
+  std::uint64_t revision = 0;
 
 #define GS_DECLARE_FIELD(name, type) DeviceArray<type> name;
   GS_PARTICLE_FIELDS(GS_DECLARE_FIELD)
@@ -51,6 +54,7 @@ struct ParticleStore {
   // Sets the length of every array (contents up to min(old, n) are kept).
   void resize_arrays(std::size_t n) {
     for_each_particle_field(*this, [n](const char*, auto& a) { a.resize(n); });
+    ++revision;
   }
   void drop_ghosts() {
     n_ghost = 0;

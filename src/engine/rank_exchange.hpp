@@ -5,7 +5,7 @@
 #include <string>
 
 #include "engine/particle_store.hpp"
-#include "engine/step_kernels.hpp"
+#include "engine/particle_movement.hpp"
 
 namespace gs {
 
@@ -28,13 +28,13 @@ class RankExchange {
 
   // Owned particles that left this rank's region go, with their contact
   // history, to their new owners; arrivals are appended. Drops the ghosts.
-  virtual void migrate(ParticleStore& s, StepKernels& k) = 0;
+  virtual void migrate(ParticleStore& s, ParticleMovement& k) = 0;
   // Replaces the ghosts with copies of the neighbours' particles that lie
   // within interaction range of this rank's region.
-  virtual void refresh_ghosts(ParticleStore& s, StepKernels& k) = 0;
+  virtual void refresh_ghosts(ParticleStore& s, ParticleMovement& k) = 0;
   // Collective. Re-partitions when the load imbalance (max / mean particles
   // per rank) exceeds the scene's threshold, and migrates; true if it did.
-  virtual bool rebalance(ParticleStore& s, StepKernels& k) = 0;
+  virtual bool rebalance(ParticleStore& s, ParticleMovement& k) = 0;
   // Collective: the fault of the lowest failing rank, as "rank R: message",
   // or "" when no rank failed.
   virtual std::string first_fault(const std::string& local) = 0;

@@ -42,13 +42,13 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
     for (const ParticleInit& p : scene.particles)
       if (exchange_->owns(p.position)) mine.push_back(p);
     upload(mine);
-    exchange_->refresh_ghosts(store_, *kernels_);
+    exchange_->refresh_ghosts(store_, kernels_->movement());
   } else {
     upload(scene.particles);
   }
   // Forces at t = 0 for the first half kick.
   rebuild_neighbours();
-  kernels_->compute_forces(store_, 0.0, 0);
+  kernels_->forces().compute(store_, 0.0, 0);
 }
 
 Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::shared_ptr<RankExchange> exchange,
@@ -56,7 +56,7 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
     : scene_(scene), options_(options), exchange_(std::move(exchange)) {
   set_up(scene);
   restore(restart);
-  if (exchange_) exchange_->refresh_ghosts(store_, *kernels_);
+  if (exchange_) exchange_->refresh_ghosts(store_, kernels_->movement());
   rebuild_neighbours();
 }
 
@@ -71,7 +71,7 @@ void Simulation::set_up(const SceneSpec& scene) {
   kernels_ = make_step_kernels({b, scene.precision, scene.model, scene.effects},
                                {scene.materials, scene.pairs, scene.contact_slots});
   const double diameter = 2.0 * largest_radius(scene.particles);
-  skin_ = kernels_->uses_verlet_list() ? options_.verlet_skin * diameter : 0.0;
+  skin_ = kernels_->neighbours().uses_verlet_list() ? options_.verlet_skin * diameter : 0.0;
   grid_ = make_cell_grid(scene.domain_min, scene.domain_max, diameter + skin_);
   walls_ = scene.walls;
   for (const Wall& w : walls_) walls_move_ = walls_move_ || norm2(w.velocity) > 0 || norm2(w.angular_velocity) > 0;
@@ -82,9 +82,9 @@ void Simulation::set_up(const SceneSpec& scene) {
       throw std::runtime_error("the scene's meshes have more than 2^28 triangles, edges or vertices");
     for (const MeshMotion& m : meshes_.motion)
       meshes_move_ = meshes_move_ || norm2(m.velocity) > 0 || norm2(m.angular_velocity) > 0;
-    kernels_->set_meshes(meshes_);
+    kernels_->forces().set_meshes(meshes_);
     // Bins in each mesh's own frame: binned once, whatever the motion.
-    kernels_->set_mesh_bins(bin_triangles(meshes_, grid_.cell_size, run_binning(grid_.cell_size)));
+    kernels_->forces().set_mesh_bins(bin_triangles(meshes_, grid_.cell_size, run_binning(grid_.cell_size)));
   }
 }
 
@@ -119,8 +119,8 @@ void Simulation::restore(const RestartState& r) {
   }
   store_.n_owned = 0;
   store_.n_ghost = 0;
-  kernels_->append(store_, part, false);
-  kernels_->set_forces(store_, force, torque);
+  kernels_->movement().append(store_, part, false);
+  kernels_->movement().set_forces(store_, force, torque);
 }
 
 void Simulation::upload(const std::vector<ParticleInit>& particles) {
@@ -160,19 +160,20 @@ void Simulation::upload(const std::vector<ParticleInit>& particles) {
   store_.orientation.from_host(orientation);
   store_.n_owned = Index(n);
   store_.n_ghost = 0;
-  kernels_->reserve(Index(n));
+  ++store_.revision;
+  kernels_->movement().reserve(Index(n));
 }
 
 void Simulation::move_walls(double t) {
   for (std::size_t k = 0; k < walls_.size(); ++k) walls_[k] = wall_at(scene_.walls[k], t);
-  kernels_->set_walls(walls_);
+  kernels_->forces().set_walls(walls_);
 }
 
 // Poses from the absolute time; the backend poses its vertices from them.
 void Simulation::pose_meshes(double t) {
   if (meshes_.n_triangles() == 0) return;
   set_mesh_poses(meshes_, t);
-  kernels_->set_mesh_pose(meshes_);
+  kernels_->forces().set_mesh_pose(meshes_);
 }
 
 MeshSet Simulation::meshes() const {
@@ -185,7 +186,7 @@ std::vector<MeshLoad> Simulation::mesh_loads() const {
   std::vector<MeshLoad> total(std::size_t(meshes_.n_meshes()));
   if (meshes_.n_triangles() == 0) return total;
   kernels_->synchronize();
-  const std::vector<MeshLoad> per_particle = kernels_->particle_mesh_loads(store_);
+  const std::vector<MeshLoad> per_particle = kernels_->forces().particle_mesh_loads(store_);
   const std::vector<ParticleId> id = store_.id.to_host();
   const std::size_t n = std::size_t(store_.n_owned), k = total.size();
   std::vector<std::size_t> order(n);
@@ -199,7 +200,7 @@ std::vector<MeshLoad> Simulation::mesh_loads() const {
   return total;
 }
 
-void Simulation::rebuild_neighbours() { kernels_->build_neighbours(store_, grid_, skin_); }
+void Simulation::rebuild_neighbours() { kernels_->neighbours().build(store_, grid_, skin_); }
 
 void Simulation::run(long long steps, const std::function<bool()>& stop_after_step) {
   const auto start = Clock::now();
@@ -212,7 +213,7 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
     if (exchange_) exchange_->time_phases(step_ % kTimedEvery == 0);
     auto t0 = Clock::now();
     p.step = step_ + 1;
-    kernels_->kick_drift(store_, p);
+    kernels_->integration().kick_drift(store_, p);
     if (walls_move_) move_walls(time_ + dt);
     if (meshes_move_) pose_meshes(time_ + dt);
     timings_.integrate += phase_seconds(t0);
@@ -222,29 +223,29 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
     // anew every step; a single rank with a Verlet list keeps it while it
     // covers every contact, and re-sorts memory only when it rebuilds it.
     t0 = Clock::now();
-    const bool stale = exchange_ || kernels_->neighbours_stale(store_);
+    const bool stale = exchange_ || kernels_->neighbours().stale(store_);
     if (stale && options_.reorder_interval > 0 && step_ + 1 - last_reorder_ >= options_.reorder_interval) {
       store_.drop_ghosts();
-      kernels_->build_cell_list(store_, grid_);
-      kernels_->reorder_by_cells(store_);
+      kernels_->neighbours().build_cell_list(store_, grid_);
+      kernels_->movement().reorder(store_, kernels_->neighbours().cell_order());
       last_reorder_ = step_ + 1;
     }
     timings_.neighbours += phase_seconds(t0);
     if (exchange_) {
       t0 = Clock::now();
-      exchange_->refresh_ghosts(store_, *kernels_);
+      exchange_->refresh_ghosts(store_, kernels_->movement());
       timings_.exchange += phase_seconds(t0);
     }
     t0 = Clock::now();
-    if (stale && exchange_) kernels_->build_neighbours_for_one_step(store_, grid_);
+    if (stale && exchange_) kernels_->neighbours().build_for_one_step(store_, grid_);
     else if (stale) rebuild_neighbours();
     timings_.neighbours += phase_seconds(t0);
 
     t0 = Clock::now();
-    kernels_->compute_forces(store_, dt, p.step);
+    kernels_->forces().compute(store_, dt, p.step);
     timings_.forces += phase_seconds(t0);
     t0 = Clock::now();
-    kernels_->kick(store_, p);
+    kernels_->integration().kick(store_, p);
     timings_.integrate += phase_seconds(t0);
     ++step_;
     time_ = double(step_) * dt;
@@ -277,7 +278,7 @@ void Simulation::step_particles_between_ranks() {
   const auto t0 = Clock::now();
   const long long next = step_ + 1;
   const bool balance = options_.rebalance_interval > 0 && next % options_.rebalance_interval == 0;
-  if (!(balance && exchange_->rebalance(store_, *kernels_))) exchange_->migrate(store_, *kernels_);
+  if (!(balance && exchange_->rebalance(store_, kernels_->movement()))) exchange_->migrate(store_, kernels_->movement());
   timings_.exchange += phase_seconds(t0);
 }
 
@@ -304,15 +305,15 @@ ParticleSnapshot Simulation::snapshot() const {
   for_each_particle_field(s, store_, [&](const char*, auto& to, const auto& from) {
     to = permuted(owned(from.to_host()), order);
   });
-  s.force = permuted(kernels_->forces(store_), order);
-  s.torque = permuted(kernels_->torques(store_), order);
-  if (keeps_history(scene_.model, scene_.effects)) s.contacts = permuted(kernels_->contact_counts(store_), order);
+  s.force = permuted(kernels_->movement().forces(store_), order);
+  s.torque = permuted(kernels_->movement().torques(store_), order);
+  if (keeps_history(scene_.model, scene_.effects)) s.contacts = permuted(kernels_->movement().contact_counts(store_), order);
   return s;
 }
 
 ParticleRecords Simulation::wall_contact_history() const {
   kernels_->synchronize();
-  const ParticleRecords r = kernels_->wall_contact_history(store_);
+  const ParticleRecords r = kernels_->movement().wall_contact_history(store_);
   std::vector<std::size_t> order(r.size());
   std::iota(order.begin(), order.end(), std::size_t(0));
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return r.id[a] < r.id[b]; });
@@ -323,7 +324,7 @@ ParticleRecords Simulation::wall_contact_history() const {
 }
 
 HostHistory Simulation::history() const {
-  HostHistory h = kernels_->history(store_);
+  HostHistory h = kernels_->movement().history(store_);
   if (h.partner.empty()) return h;
   const std::vector<ParticleId> id = store_.id.to_host();
   const std::size_t n = std::size_t(store_.n_owned);

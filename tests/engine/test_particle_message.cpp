@@ -86,19 +86,19 @@ class MessageTest : public testing::TestWithParam<Backend> {
     const unsigned kept = history_fields_kept(c.model, c.effects);
     const ParticleRecords all = sample_records(50, kept);
     ParticleStore a = empty_store(b), z = empty_store(b);
-    from->append(a, all, false);
+    from->movement().append(a, all, false);
     // z already holds particles: arrivals go after them.
     const ParticleRecords first = sample_records(3, kept);
-    to->append(z, first, false);
+    to->movement().append(z, first, false);
 
     const std::vector<Index> which{49, 3, 17, 0, 18, 31};
     DeviceArray<Index> w(b);
     w.from_host(which);
     DeviceArray<unsigned char> message(b);
-    const MessageHeader h = from->pack(a, w, true, message);
+    const MessageHeader h = from->movement().pack(a, w, true, message);
     EXPECT_EQ(h.count, which.size());
     EXPECT_EQ(message.size(), MessageLayout(h).bytes);
-    to->unpack(z, h, message.data(), false);
+    to->movement().unpack(z, h, message.data(), false);
 
     ASSERT_EQ(z.n_owned, Index(3 + which.size()));
     std::vector<Index> arrived(which.size());
@@ -106,7 +106,7 @@ class MessageTest : public testing::TestWithParam<Backend> {
     for_each_particle_field(z, all, [&](const char* name, const auto& field, const auto& sent) {
       EXPECT_TRUE(same(picked(field.to_host(), arrived), picked(sent, which))) << name;
     });
-    const HostHistory got = to->history(z);
+    const HostHistory got = to->movement().history(z);
     EXPECT_TRUE(same(picked(got.partner, arrived, kSlots), picked(all.history.partner, which, kSlots)));
     for_each_history_field(got, all.history, [&](const char* name, unsigned bit, const auto& field, const auto& sent) {
       EXPECT_EQ(field.empty(), !(kept & bit)) << name;
@@ -118,14 +118,14 @@ class MessageTest : public testing::TestWithParam<Backend> {
     EXPECT_TRUE(same(picked(got.partner, {0, 1, 2}, kSlots), first.history.partner));
 
     // As ghosts: no history travels, and a header claiming other history is refused.
-    const MessageHeader g = from->pack(a, w, false, message);
+    const MessageHeader g = from->movement().pack(a, w, false, message);
     EXPECT_EQ(g.slots, 0);
-    EXPECT_THROW(to->unpack(z, g, message.data(), false), std::runtime_error);
-    to->unpack(z, g, message.data(), true);
+    EXPECT_THROW(to->movement().unpack(z, g, message.data(), false), std::runtime_error);
+    to->movement().unpack(z, g, message.data(), true);
     EXPECT_EQ(z.n_ghost, Index(which.size()));
     MessageHeader bad = h;
     bad.check ^= 1u;
-    EXPECT_THROW(to->unpack(z, bad, message.data(), true), std::runtime_error);
+    EXPECT_THROW(to->movement().unpack(z, bad, message.data(), true), std::runtime_error);
   }
 };
 

@@ -1,9 +1,10 @@
-#include "engine/instances/step_kernels_cpu.hpp"
+#include "backend/cpu/cpu_exec.hpp"
+#include "engine/step_kernels_impl.hpp"
 
 namespace gs {
 
 std::unique_ptr<StepKernels> make_step_kernels_cpu(const KernelChoice& c, const ContactInputs& in) {
-  return fp32_forces(c.precision) ? make_step_kernels_cpu_fp32(c, in) : make_step_kernels_cpu_fp64(c, in);
+  return make_step_kernels_of<CpuExec>(c, in);
 }
 
 }  // namespace gs

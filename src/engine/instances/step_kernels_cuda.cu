@@ -1,9 +1,10 @@
-#include "engine/instances/step_kernels_cuda.hpp"
+#include "backend/cuda/cuda_exec.cuh"
+#include "engine/step_kernels_impl.hpp"
 
 namespace gs {
 
 std::unique_ptr<StepKernels> make_step_kernels_cuda(const KernelChoice& c, const ContactInputs& in) {
-  return fp32_forces(c.precision) ? make_step_kernels_cuda_fp32(c, in) : make_step_kernels_cuda_fp64(c, in);
+  return make_step_kernels_of<CudaExec>(c, in);
 }
 
 }  // namespace gs

@@ -1,7 +1,6 @@
 #pragma once
-// Out-of-line members of StepKernelsImpl that move particles between ranks:
-// gather into packed buffers, compact, append. Pure data movement, run as
-// backend kernels; values are copied bit for bit.
+// Out-of-line members of ParticleMover that move particles between ranks
+// and from the host: gather into packed buffers, compact, append.
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -97,21 +96,21 @@ void append_from_host(DeviceArray<T>& a, const std::vector<T>& h, std::size_t fi
   if (!h.empty()) backend_copy_from_host(a.backend(), a.data() + first, h.data(), h.size() * sizeof(T));
 }
 
-template <class Exec, class Real, class Model, unsigned Effects>
-MessageHeader StepKernelsImpl<Exec, Real, Model, Effects>::message_header(Index count, bool with_history) const {
+template <class Exec, class Real>
+MessageHeader ParticleMover<Exec, Real>::message_header(Index count, bool with_history) const {
   MessageHeader h;
   h.count = std::uint64_t(count);
   h.check = kMessageCheck;
-  if (with_history && kHistory) {
-    h.slots = history_.slots;
+  if (with_history && st_.keeps_history()) {
+    h.slots = st_.history.slots;
     h.real_bytes = std::int32_t(sizeof(Real));
-    h.fields = kKept;
+    h.fields = st_.kept;
   }
   return h;
 }
 
-template <class Exec, class Real, class Model, unsigned Effects>
-MessageHeader StepKernelsImpl<Exec, Real, Model, Effects>::pack(const ParticleStore& s, const DeviceArray<Index>& w,
+template <class Exec, class Real>
+MessageHeader ParticleMover<Exec, Real>::pack(const ParticleStore& s, const DeviceArray<Index>& w,
                                                                 bool with_history,
                                                                 DeviceArray<unsigned char>& out) const {
   const MessageHeader h = message_header(Index(w.size()), with_history);
@@ -121,17 +120,17 @@ MessageHeader StepKernelsImpl<Exec, Real, Model, Effects>::pack(const ParticleSt
   int k = 0;
   for_each_particle_field(s, [&](const char*, const auto& a) { gather_into<Exec>(a, w, b + at.particle[k++]); });
   if (h.slots == 0) return h;
-  gather_history_into<Exec>(history_.partner, w, h.slots, history_.strides, b + at.partner);
+  gather_history_into<Exec>(st_.history.partner, w, h.slots, st_.history.strides, b + at.partner);
   k = 0;
-  for_each_history_field(history_, [&](const char*, unsigned bit, const auto& a) {
-    if (h.fields & bit) gather_history_into<Exec>(a, w, h.slots, history_.strides, b + at.history[k]);
+  for_each_history_field(st_.history, [&](const char*, unsigned bit, const auto& a) {
+    if (h.fields & bit) gather_history_into<Exec>(a, w, h.slots, st_.history.strides, b + at.history[k]);
     ++k;
   });
   return h;
 }
 
-template <class Exec, class Real, class Model, unsigned Effects>
-void StepKernelsImpl<Exec, Real, Model, Effects>::unpack(ParticleStore& s, const MessageHeader& h,
+template <class Exec, class Real>
+void ParticleMover<Exec, Real>::unpack(ParticleStore& s, const MessageHeader& h,
                                                          const unsigned char* payload, bool as_ghosts) {
   if (!as_ghosts && s.n_ghost != 0) throw std::logic_error("owned particles can only be appended before ghosts");
   if (h.check != kMessageCheck) throw std::runtime_error("a particle message from another rank is corrupt");
@@ -142,7 +141,6 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::unpack(ParticleStore& s, const
                              std::to_string(h.fields) + " in " + std::to_string(h.real_bytes) +
                              "-byte reals; this run uses " + std::to_string(want.slots) + " of fields " +
                              std::to_string(want.fields) + " in " + std::to_string(want.real_bytes));
-  verlet_.valid = false;
   const MessageLayout at(h);
   const std::size_t first = std::size_t(s.size());
   const Index m = Index(h.count);
@@ -156,41 +154,40 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::unpack(ParticleStore& s, const
   auto scatter_history = [&](std::size_t offset, auto& a) {
     using T = typename std::remove_reference_t<decltype(a)>::value_type;
     Exec::parallel_for(Index(h.slots) * m, ScatterHistory<T>{reinterpret_cast<const T*>(payload + offset), a.data(),
-                                                            history_.strides, Index(first), m});
+                                                            st_.history.strides, Index(first), m});
   };
-  scatter_history(at.partner, history_.partner);
+  scatter_history(at.partner, st_.history.partner);
   k = 0;
-  for_each_history_field(history_, [&](const char*, unsigned bit, auto& a) {
+  for_each_history_field(st_.history, [&](const char*, unsigned bit, auto& a) {
     if (h.fields & bit) scatter_history(at.history[k], a);
     ++k;
   });
 }
 
-template <class Exec, class Real, class Model, unsigned Effects>
-void StepKernelsImpl<Exec, Real, Model, Effects>::keep_owned(ParticleStore& s, const DeviceArray<Index>& order) {
-  verlet_.valid = false;
+template <class Exec, class Real>
+void ParticleMover<Exec, Real>::keep_owned(ParticleStore& s, const DeviceArray<Index>& order) {
   const Index n = Index(order.size());
   keep_in_order(s, order.data(), n);
   s.n_owned = n;
   s.drop_ghosts();
 }
 
-template <class Exec, class Real, class Model, unsigned Effects>
-void StepKernelsImpl<Exec, Real, Model, Effects>::append(ParticleStore& s, const ParticleRecords& r, bool as_ghosts) {
+template <class Exec, class Real>
+void ParticleMover<Exec, Real>::append(ParticleStore& s, const ParticleRecords& r, bool as_ghosts) {
   if (!as_ghosts && s.n_ghost != 0) throw std::logic_error("owned particles can only be appended before ghosts");
-  verlet_.valid = false;
   const std::size_t first = std::size_t(s.size());
+  ++s.revision;
   for_each_particle_field(s, r, [&](const char*, auto& a, const auto& from) { append_from_host(a, from, first); });
   const Index m = Index(r.size());
   if (as_ghosts) s.n_ghost += m;
   else s.n_owned += m;
   reserve(s.size());
-  if (as_ghosts || !kHistory || m == 0) return;
+  if (as_ghosts || !st_.keeps_history() || m == 0) return;
 
   const HostHistory& h = r.history;
-  if (h.slots != history_.slots)
+  if (h.slots != st_.history.slots)
     throw std::runtime_error("arriving particles carry " + std::to_string(h.slots) + " history slots, this run uses " +
-                             std::to_string(history_.slots));
+                             std::to_string(st_.history.slots));
   const std::size_t slots = std::size_t(h.slots), count = std::size_t(m);
   // Rows i * slots + k into a packed slot-major block, in the device type.
   auto scatter_rows = [&](const auto& rows, auto& a) {
@@ -198,24 +195,24 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::append(ParticleStore& s, const
     std::vector<T> block(slots * count);
     for (std::size_t i = 0; i < count; ++i)
       for (std::size_t k = 0; k < slots; ++k) block[k * count + i] = T(rows[i * slots + k]);
-    scatter_history_from_host<Exec>(a, block, h.slots, history_.strides, Index(first), staging_);
+    scatter_history_from_host<Exec>(a, block, h.slots, st_.history.strides, Index(first), st_.staging);
   };
-  scatter_rows(h.partner, history_.partner);
-  for_each_history_field(h, history_, [&](const char*, unsigned bit, const auto& rows, auto& a) {
-    if (kKept & bit) scatter_rows(rows, a);
+  scatter_rows(h.partner, st_.history.partner);
+  for_each_history_field(h, st_.history, [&](const char*, unsigned bit, const auto& rows, auto& a) {
+    if (st_.kept & bit) scatter_rows(rows, a);
   });
 }
 
 // Selected and gathered on the backend, so only the particles on a wall
 // cross to the host: the whole history is some 500 bytes per particle there.
-template <class Exec, class Real, class Model, unsigned Effects>
-ParticleRecords StepKernelsImpl<Exec, Real, Model, Effects>::wall_contact_history(const ParticleStore& s) const {
+template <class Exec, class Real>
+ParticleRecords ParticleMover<Exec, Real>::wall_contact_history(const ParticleStore& s) const {
   ParticleRecords r;
-  r.history.slots = history_.slots;
-  if (!kHistory || s.n_owned == 0) return r;
+  r.history.slots = st_.history.slots;
+  if (!st_.keeps_history() || s.n_owned == 0) return r;
   DeviceArray<Index> which(Exec::backend, std::size_t(s.n_owned));
-  const Index m = Exec::select(s.n_owned, TouchesWall{history_.partner.data(), history_.strides, history_.slots},
-                               which.data(), staging_);
+  const Index m = Exec::select(s.n_owned, TouchesWall{st_.history.partner.data(), st_.history.strides, st_.history.slots},
+                               which.data(), st_.staging);
   which.resize(std::size_t(m));
   if (m == 0) return r;
   DeviceArray<unsigned char> block(Exec::backend);
@@ -223,11 +220,11 @@ ParticleRecords StepKernelsImpl<Exec, Real, Model, Effects>::wall_contact_histor
   auto fetch = [&](const auto& field, auto& rows) {
     using T = typename std::decay_t<decltype(field)>::value_type;
     using Host = typename std::decay_t<decltype(rows)>::value_type;
-    block.resize(std::size_t(m) * sizeof(T) * std::size_t(history_.slots));
-    gather_history_into<Exec>(field, which, history_.slots, history_.strides, block.data());
-    std::vector<T> packed(std::size_t(m) * std::size_t(history_.slots));
+    block.resize(std::size_t(m) * sizeof(T) * std::size_t(st_.history.slots));
+    gather_history_into<Exec>(field, which, st_.history.slots, st_.history.strides, block.data());
+    std::vector<T> packed(std::size_t(m) * std::size_t(st_.history.slots));
     backend_copy_to_host(Exec::backend, packed.data(), block.data(), packed.size() * sizeof(T));
-    const std::vector<T> device_rows = slot_major_to_rows(packed, history_.slots, std::size_t(m));
+    const std::vector<T> device_rows = slot_major_to_rows(packed, st_.history.slots, std::size_t(m));
     rows.resize(device_rows.size());
     for (std::size_t e = 0; e < rows.size(); ++e) rows[e] = Host(device_rows[e]);
   };
@@ -235,9 +232,9 @@ ParticleRecords StepKernelsImpl<Exec, Real, Model, Effects>::wall_contact_histor
   gather_into<Exec>(s.id, which, block.data());
   r.id.resize(std::size_t(m));
   backend_copy_to_host(Exec::backend, r.id.data(), block.data(), r.id.size() * sizeof(ParticleId));
-  fetch(history_.partner, r.history.partner);
-  for_each_history_field(history_, r.history, [&](const char*, unsigned bit, const auto& field, auto& rows) {
-    if (kKept & bit) fetch(field, rows);
+  fetch(st_.history.partner, r.history.partner);
+  for_each_history_field(st_.history, r.history, [&](const char*, unsigned bit, const auto& field, auto& rows) {
+    if (st_.kept & bit) fetch(field, rows);
   });
   return r;
 }

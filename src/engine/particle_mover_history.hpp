@@ -1,6 +1,6 @@
 #pragma once
-// Out-of-line members of StepKernelsImpl: data movement (reorder, history
-// transfer) kept apart from the physics above.
+// Out-of-line members of ParticleMover: re-sorting the store, laying the
+// history out, and the history's host copies.
 #include <stdexcept>
 #include <type_traits>
 
@@ -46,37 +46,37 @@ void gather_slots_in_place(DeviceArray<T>& a, const Index* order, Index n, int s
   }
 }
 
-template <class Exec, class Real, class Model, unsigned Effects>
-void StepKernelsImpl<Exec, Real, Model, Effects>::reorder_by_cells(ParticleStore& s) {
-  if (s.n_ghost != 0) throw std::logic_error("reorder_by_cells needs a cell list of owned particles only");
-  verlet_.valid = false;
-  const Index n = s.n_owned;
-  keep_in_order(s, cells_.sorted.data(), n);
+template <class Exec, class Real>
+void ParticleMover<Exec, Real>::reorder(ParticleStore& s, const DeviceArray<Index>& order) {
+  if (s.n_ghost != 0 || order.size() != std::size_t(s.n_owned))
+    throw std::logic_error("reorder needs one store index per owned particle and no ghosts");
+  keep_in_order(s, order.data(), s.n_owned);
 }
 
 // Owned particles order[0, n) become [0, n), with their forces and history.
-template <class Exec, class Real, class Model, unsigned Effects>
-void StepKernelsImpl<Exec, Real, Model, Effects>::keep_in_order(ParticleStore& s, const Index* order, Index n) {
-  DeviceArray<unsigned char>& tmp = staging_;
+template <class Exec, class Real>
+void ParticleMover<Exec, Real>::keep_in_order(ParticleStore& s, const Index* order, Index n) {
+  DeviceArray<unsigned char>& tmp = st_.staging;
+  ++s.revision;
   for_each_particle_field(s, [&](const char*, auto& a) { gather_in_place<Exec>(a, order, n, tmp); });
-  gather_in_place<Exec>(forces_.force, order, n, tmp);
-  if (kTorque) gather_in_place<Exec>(forces_.torque, order, n, tmp);
-  if (kHistory) {
-    gather_slots_in_place<Exec>(history_.partner, order, n, history_.slots, history_.strides, tmp);
-    for_each_history_field(history_, [&](const char*, unsigned, auto& a) {
-      gather_slots_in_place<Exec>(a, order, n, history_.slots, history_.strides, tmp);
+  gather_in_place<Exec>(st_.forces.force, order, n, tmp);
+  if (st_.torque) gather_in_place<Exec>(st_.forces.torque, order, n, tmp);
+  if (st_.keeps_history()) {
+    gather_slots_in_place<Exec>(st_.history.partner, order, n, st_.history.slots, st_.history.strides, tmp);
+    for_each_history_field(st_.history, [&](const char*, unsigned, auto& a) {
+      gather_slots_in_place<Exec>(a, order, n, st_.history.slots, st_.history.strides, tmp);
     });
   }
 }
 
 // Growing the capacity changes the strides of a slot-major history: the
 // entries are re-laid out (new particles start with free slots).
-template <class Exec, class Real, class Model, unsigned Effects>
-void StepKernelsImpl<Exec, Real, Model, Effects>::grow_history(std::size_t capacity) {
-  const std::size_t old_capacity = history_.capacity;
-  const HistoryStrides old = history_.strides;
-  const HistoryStrides fresh_strides = HistoryStrides::of(Exec::history_order, history_.slots, capacity);
-  const int slots = history_.slots;
+template <class Exec, class Real>
+void ParticleMover<Exec, Real>::grow_history(std::size_t capacity) {
+  const std::size_t old_capacity = st_.history.capacity;
+  const HistoryStrides old = st_.history.strides;
+  const HistoryStrides fresh_strides = HistoryStrides::of(Exec::history_order, st_.history.slots, capacity);
+  const int slots = st_.history.slots;
   auto relayout = [&](auto& a, auto empty) {
     const auto host = a.to_host();
     std::vector<decltype(empty)> fresh(std::size_t(slots) * capacity, empty);
@@ -84,21 +84,21 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::grow_history(std::size_t capac
       for (std::size_t i = 0; i < old_capacity; ++i) fresh[fresh_strides.at(s, i)] = host[old.at(s, i)];
     a.from_host(fresh);
   };
-  relayout(history_.partner, kNoPartner);
-  for_each_history_field(history_, [&](const char*, unsigned bit, auto& a) {
-    if (kKept & bit) relayout(a, typename std::decay_t<decltype(a)>::value_type{});
+  relayout(st_.history.partner, kNoPartner);
+  for_each_history_field(st_.history, [&](const char*, unsigned bit, auto& a) {
+    if (st_.kept & bit) relayout(a, typename std::decay_t<decltype(a)>::value_type{});
   });
-  history_.capacity = capacity;
-  history_.strides = fresh_strides;
+  st_.history.capacity = capacity;
+  st_.history.strides = fresh_strides;
 }
 
-template <class Exec, class Real, class Model, unsigned Effects>
-HostHistory StepKernelsImpl<Exec, Real, Model, Effects>::history(const ParticleStore& s) const {
+template <class Exec, class Real>
+HostHistory ParticleMover<Exec, Real>::history(const ParticleStore& s) const {
   HostHistory h;
-  h.slots = history_.slots;
-  if (!kHistory) return h;
+  h.slots = st_.history.slots;
+  if (!st_.keeps_history()) return h;
   const Index n = s.n_owned;
-  const HistoryStrides at = history_.strides;
+  const HistoryStrides at = st_.history.strides;
   const std::size_t slots = std::size_t(h.slots);
   // Rows i * slots + k from the layout of `at`, widened to fp64. Only the
   // fields the run keeps: a checkpoint of a frictional bed without rolling
@@ -110,28 +110,28 @@ HostHistory StepKernelsImpl<Exec, Real, Model, Effects>::history(const ParticleS
       for (std::size_t k = 0; k < slots; ++k)
         out[i * slots + k] = typename std::decay_t<decltype(out)>::value_type(device[at.at(int(k), std::size_t(i))]);
   };
-  rows(history_.partner, h.partner);
-  for_each_history_field(history_, h, [&](const char*, unsigned, const auto& field, auto& out) { rows(field, out); });
+  rows(st_.history.partner, h.partner);
+  for_each_history_field(st_.history, h, [&](const char*, unsigned, const auto& field, auto& out) { rows(field, out); });
   return h;
 }
 
-template <class Exec, class Real, class Model, unsigned Effects>
-std::vector<std::uint16_t> StepKernelsImpl<Exec, Real, Model, Effects>::contact_counts(const ParticleStore& s) const {
-  if (!kHistory) return std::vector<std::uint16_t>(std::size_t(s.n_owned), 0);
+template <class Exec, class Real>
+std::vector<std::uint16_t> ParticleMover<Exec, Real>::contact_counts(const ParticleStore& s) const {
+  if (!st_.keeps_history()) return std::vector<std::uint16_t>(std::size_t(s.n_owned), 0);
   DeviceArray<std::uint16_t> count(Exec::backend, std::size_t(s.n_owned));
-  Exec::parallel_for(s.n_owned, CountContacts{history_.partner.data(), history_.strides, history_.slots, count.data()});
+  Exec::parallel_for(s.n_owned, CountContacts{st_.history.partner.data(), st_.history.strides, st_.history.slots, count.data()});
   return count.to_host();
 }
 
-template <class Exec, class Real, class Model, unsigned Effects>
-void StepKernelsImpl<Exec, Real, Model, Effects>::set_history(const ParticleStore& s, const HostHistory& h) {
-  if (!kHistory) return;
-  if (h.slots != history_.slots)
+template <class Exec, class Real>
+void ParticleMover<Exec, Real>::set_history(const ParticleStore& s, const HostHistory& h) {
+  if (!st_.keeps_history()) return;
+  if (h.slots != st_.history.slots)
     throw std::runtime_error("contact history has " + std::to_string(h.slots) + " slots per particle, this run uses " +
-                             std::to_string(history_.slots));
+                             std::to_string(st_.history.slots));
   reserve(s.size());
-  const HistoryStrides at = history_.strides;
-  const std::size_t slots = std::size_t(h.slots), entries = slots * history_.capacity;
+  const HistoryStrides at = st_.history.strides;
+  const std::size_t slots = std::size_t(h.slots), entries = slots * st_.history.capacity;
   // The layout of `at` from rows i * slots + k, narrowed to the force precision.
   auto layout = [&](const auto& rows, auto& field, auto empty) {
     std::vector<decltype(empty)> device(entries, empty);
@@ -140,9 +140,9 @@ void StepKernelsImpl<Exec, Real, Model, Effects>::set_history(const ParticleStor
         device[at.at(int(k), std::size_t(i))] = decltype(empty)(rows[i * slots + k]);
     field.from_host(device);
   };
-  layout(h.partner, history_.partner, kNoPartner);
-  for_each_history_field(h, history_, [&](const char*, unsigned bit, const auto& rows, auto& field) {
-    if (kKept & bit) layout(rows, field, typename std::decay_t<decltype(field)>::value_type{});
+  layout(h.partner, st_.history.partner, kNoPartner);
+  for_each_history_field(h, st_.history, [&](const char*, unsigned bit, const auto& rows, auto& field) {
+    if (st_.kept & bit) layout(rows, field, typename std::decay_t<decltype(field)>::value_type{});
   });
 }
 

@@ -1,0 +1,32 @@
+#pragma once
+// Contact forces and torques of the owned particles from the neighbours the
+// run's NeighbourSearch found, the analytic walls and the triangle meshes:
+// compiled per backend, force precision, contact model and set of effects.
+#include <vector>
+
+#include "engine/particle_store.hpp"
+#include "walls/mesh.hpp"
+#include "walls/wall.hpp"
+
+namespace gs {
+
+class ForceComputation {
+ public:
+  virtual ~ForceComputation() = default;
+
+  virtual void set_walls(const std::vector<Wall>& walls) = 0;  // posed
+  // Triangle meshes (walls/mesh.hpp): everything once, then the poses each
+  // step the meshes move, and the cell bins when rebinned.
+  virtual void set_meshes(const MeshSet& meshes) = 0;
+  virtual void set_mesh_pose(const MeshSet& meshes) = 0;
+  virtual void set_mesh_bins(const MeshBins& bins) = 0;
+
+  // Forces, torques and history of every owned particle at the store's state.
+  virtual void compute(ParticleStore& s, double dt, long long step) = 0;
+  // Load of each owned particle (store order) on each mesh, entry
+  // i * n_meshes + m, from the last computation; empty without meshes.
+  virtual std::vector<MeshLoad> particle_mesh_loads(const ParticleStore& s) const = 0;
+  virtual std::size_t bytes() const = 0;  // pair table, walls, meshes
+};
+
+}  // namespace gs

@@ -1,0 +1,115 @@
+#pragma once
+// ForceComputation over an execution policy, force precision, contact model
+// and set of effects: one ForceKernel thread per owned particle
+// (engine/force_kernel.hpp) over the neighbours of the run's NeighbourFinder.
+#include <vector>
+
+#include "engine/force_kernel.hpp"
+#include "engine/force_computation.hpp"
+#include "engine/mesh_arrays.hpp"
+#include "engine/neighbour_finder.hpp"
+#include "engine/step_state.hpp"
+
+namespace gs {
+
+template <class Exec, class Real, class Model, unsigned Effects>
+class ForceComputer final : public ForceComputation {
+  static constexpr unsigned kKept = history_fields_kept<Model>(Effects);
+  static constexpr bool kTorque = makes_torques(Effects);
+
+ public:
+  ForceComputer(const std::vector<MaterialSpec>& materials, const std::vector<PairSpec>& pairs, StepState<Real>& state,
+                const NeighbourFinder<Exec>& neighbours)
+      : pairs_(Exec::backend), walls_(Exec::backend), wall_screens_(Exec::backend), meshes_(Exec::backend),
+        st_(state), neighbours_(neighbours) {
+    if (state.kept != kKept || state.torque != kTorque)
+      throw std::logic_error("the step state does not keep what the force computation writes");
+    n_materials_ = int(materials.size());
+    pairs_.from_host(make_pair_table<Real, Model>(materials, pairs));
+  }
+
+  void set_walls(const std::vector<Wall>& walls) override {
+    walls_.from_host(walls);
+    std::vector<WallScreen> screens;
+    for (const Wall& w : walls) screens.push_back(wall_screen(w));
+    wall_screens_.from_host(screens);
+    n_walls_ = int(walls.size());
+  }
+  void set_meshes(const MeshSet& meshes) override {
+    meshes_.set(meshes);
+    meshes_.load.resize(0);  // no load before the first computation (a restart's too)
+  }
+  void set_mesh_pose(const MeshSet& meshes) override {
+    for (std::int32_t m = 0; m < meshes.n_meshes(); ++m) {
+      const std::int32_t begin = meshes.vertex_begin[m], end = meshes.vertex_begin[m + 1];
+      Exec::parallel_for(Index(end - begin), PoseVertices{meshes.pose[m], meshes_.reference.data(),
+                                                          meshes_.vertex.data(), std::size_t(begin),
+                                                          meshes_.pose.data() + m});
+    }
+  }
+  void set_mesh_bins(const MeshBins& bins) override { meshes_.set_bins(bins); }
+
+  void compute(ParticleStore& s, double dt, long long step) override {
+    meshes_.reserve(std::size_t(s.size()));
+    if constexpr (Exec::verlet_list) {
+      if (neighbours_.list_valid(s)) {
+        launch(s, neighbours_.list_candidates(), dt, step);
+      } else {
+        // NeighbourSearch::build_for_one_step: the cells of the whole store.
+        launch(s, TouchingInIdOrder{neighbours_.cell_candidates(s), s.position.data(), s.radius.data(),
+                                    s.id.data(), st_.fault.data(), step},
+               dt, step);
+      }
+    } else {
+      launch(s, neighbours_.cell_candidates(s), dt, step);
+    }
+  }
+
+  std::vector<MeshLoad> particle_mesh_loads(const ParticleStore& s) const override {
+    if (meshes_.n_triangles == 0) return {};
+    const std::size_t n = std::size_t(s.n_owned) * std::size_t(meshes_.n_meshes);
+    if (meshes_.load.size() < n) return std::vector<MeshLoad>(n);
+    std::vector<MeshLoad> h = meshes_.load.to_host();
+    h.resize(n);
+    return h;
+  }
+  std::size_t bytes() const override {
+    return pairs_.bytes() + walls_.bytes() + wall_screens_.bytes() + meshes_.bytes();
+  }
+
+ private:
+  template <class Candidates>
+  void launch(ParticleStore& s, const Candidates& candidates, double dt, long long step) {
+    ForceKernel<Real, Model, Effects, Candidates> k{s.id.data(), s.material.data(), s.radius.data(), s.mass.data(),
+                                                    s.position.data(), s.velocity.data(),
+                                                    s.angular_velocity.data(), candidates,
+                                                    PairTable<Real, Model>{pairs_.data(), n_materials_}, walls_.data(),
+                                                    wall_screens_.data(), n_walls_, meshes_.view(), meshes_.loads(),
+                                                    slot_table(), st_.forces.force.data(),
+                                                    kTorque ? st_.forces.torque.data() : nullptr, Real(dt),
+                                                    st_.fault.data(), step};
+    Exec::parallel_for(s.n_owned, k);
+  }
+  SlotTable<Real, kKept> slot_table() {
+    ContactHistory<Real>& h = st_.history;
+    SlotTable<Real, kKept> t;
+    t.partner = h.partner.data();
+#define GS_POINT_AT_FIELD(name, value, bit) t.name = h.name.data();
+    GS_HISTORY_FIELDS(GS_POINT_AT_FIELD)
+#undef GS_POINT_AT_FIELD
+    t.slots = h.slots;
+    t.strides = h.strides;
+    return t;
+  }
+
+  DeviceArray<PairParams<Real, Model>> pairs_;
+  int n_materials_ = 0;
+  DeviceArray<Wall> walls_;
+  DeviceArray<WallScreen> wall_screens_;  // per wall, at the pose walls_ holds
+  int n_walls_ = 0;
+  DeviceMeshes meshes_;
+  StepState<Real>& st_;
+  const NeighbourFinder<Exec>& neighbours_;
+};
+
+}  // namespace gs

@@ -1,0 +1,40 @@
+#pragma once
+// Who may touch whom: the cell list (every backend) and, where the backend
+// keeps one (the CPU), a Verlet list of the particles within reach plus a
+// skin. The force computation of the same run reads what this part built.
+#include <cstddef>
+
+#include "engine/particle_store.hpp"
+#include "neighbor/cell_grid.hpp"
+
+namespace gs {
+
+class NeighbourSearch {
+ public:
+  virtual ~NeighbourSearch() = default;
+
+  // Bins the whole store (owned and ghosts) into the grid's cells.
+  virtual void build_cell_list(const ParticleStore& s, const CellGrid& grid) = 0;
+  // Store indices in cell order, from the last cell list (one per particle
+  // binned): the order ParticleMovement::reorder sorts memory into.
+  virtual const DeviceArray<Index>& cell_order() const = 0;
+  // Whether contacts come from a Verlet list rather than from the cell list
+  // every step: the grid's cells must then hold the skin too.
+  virtual bool uses_verlet_list() const = 0;
+  // What the force computation needs to find contacts: the cell list, and
+  // with a Verlet list the list too, of particles within r_i + r_j + skin.
+  virtual void build(const ParticleStore& s, const CellGrid& grid, double skin) = 0;
+  // The same for one force computation only (ranks, whose ghosts change every
+  // step): the cell list alone; with a Verlet list the force kernel then finds
+  // each particle's touching partners in the cells and sums them in ascending
+  // id, which is the list's order, without writing a list used once.
+  virtual void build_for_one_step(const ParticleStore& s, const CellGrid& grid) = 0;
+  // Whether build() must run before the next force computation: always
+  // without a Verlet list; with one, when the store has changed since the
+  // build (ParticleStore::revision) or a particle has moved more than half
+  // the skin.
+  virtual bool stale(const ParticleStore& s) const = 0;
+  virtual std::size_t bytes() const = 0;  // cell and Verlet lists
+};
+
+}  // namespace gs

@@ -1,0 +1,63 @@
+#pragma once
+// Data movement of one rank's particles, with their last forces and contact
+// history: between ranks (messages that comm/ moves), within the store
+// (re-sorting, compacting) and between the backend and the host (output,
+// checkpoints, restarts). It copies bits and knows no physics: it depends on
+// the backend and the force precision only, not on the contact model.
+#include <cstdint>
+#include <vector>
+
+#include "core/particle_records.hpp"
+#include "engine/particle_message.hpp"
+#include "engine/particle_store.hpp"
+
+namespace gs {
+
+class ParticleMovement {
+ public:
+  virtual ~ParticleMovement() = default;
+
+  // Sizes the force arrays and the contact history for n particles (owned +
+  // ghosts); the history grows geometrically and keeps every stored contact.
+  virtual void reserve(Index n) = 0;
+
+  // Packs particles `which` (store indices in backend memory, as
+  // ParticleRouter selects them), with their contact history when
+  // `with_history`, into one message in backend memory
+  // (engine/particle_message.hpp).
+  virtual MessageHeader pack(const ParticleStore& s, const DeviceArray<Index>& which, bool with_history,
+                             DeviceArray<unsigned char>& out) const = 0;
+  // Appends a message's particles after the current ones, as owned particles
+  // with their history (only while there are no ghosts) or as ghosts.
+  virtual void unpack(ParticleStore& s, const MessageHeader& h, const unsigned char* payload, bool as_ghosts) = 0;
+  // Keeps the owned particles `keep`, in that order, as [0, keep.size());
+  // drops every ghost.
+  virtual void keep_owned(ParticleStore& s, const DeviceArray<Index>& keep) = 0;
+  // Re-sorts the owned particles (no ghosts) into `order` (store indices, one
+  // per owned particle: a cell list's order), forces and history with them.
+  virtual void reorder(ParticleStore& s, const DeviceArray<Index>& order) = 0;
+  // Appends host particles after the current ones, as unpack() does (a
+  // restart's particles).
+  virtual void append(ParticleStore& s, const ParticleRecords& r, bool as_ghosts) = 0;
+  // Restores the forces and torques of owned particles (store order), as a
+  // restart needs them for its first half kick.
+  virtual void set_forces(const ParticleStore& s, const std::vector<Vec3d>& force,
+                          const std::vector<Vec3d>& torque) = 0;
+  virtual void set_history(const ParticleStore& s, const HostHistory& h) = 0;
+
+  // Host copies, owned particles in store order.
+  virtual std::vector<Vec3d> forces(const ParticleStore& s) const = 0;
+  virtual std::vector<Vec3d> torques(const ParticleStore& s) const = 0;
+  virtual HostHistory history(const ParticleStore& s) const = 0;
+  // Contacts of each owned particle (occupied history slots, store order);
+  // all zero without history. Output needs these, not the whole history.
+  virtual std::vector<std::uint16_t> contact_counts(const ParticleStore& s) const = 0;
+  // Ids and history rows (store order) of the owned particles with a stored
+  // contact on an analytic wall: what the wall loads need of the history.
+  virtual ParticleRecords wall_contact_history(const ParticleStore& s) const = 0;
+
+  virtual void synchronize() const = 0;  // waits for the backend's work
+  virtual std::size_t bytes() const = 0;  // forces, history and staging
+};
+
+}  // namespace gs

@@ -1,0 +1,120 @@
+#pragma once
+// ParticleMovement over an execution policy `Exec` (CpuExec or CudaExec) and
+// force precision `Real`: gathers, scatters and copies run as backend kernels
+// and copy values bit for bit. Which history fields move is the run's
+// (StepState::kept), read at run time: one instantiation serves every
+// contact model and set of effects.
+#include <stdexcept>
+#include <string>
+
+#include "engine/particle_movement.hpp"
+#include "engine/step_state.hpp"
+
+namespace gs {
+
+template <class T>
+struct Gather {
+  const T* from;
+  T* to;
+  const Index* order;
+  GS_HD void operator()(Index k) const { to[k] = from[order[k]]; }
+};
+
+// Occupied history slots of particle i.
+struct CountContacts {
+  const ParticleId* partner;
+  HistoryStrides strides;
+  int slots;
+  std::uint16_t* count;
+  GS_HD void operator()(Index i) const {
+    unsigned c = 0;
+    for (int k = 0; k < slots; ++k) c += partner[strides.at(k, std::size_t(i))] != kNoPartner;
+    count[i] = std::uint16_t(c);
+  }
+};
+
+// Whether particle i has a stored contact on an analytic wall.
+struct TouchesWall {
+  const ParticleId* partner;
+  HistoryStrides strides;
+  int slots;
+  GS_HD bool operator()(Index i) const {
+    for (int k = 0; k < slots; ++k) {
+      const ParticleId p = partner[strides.at(k, std::size_t(i))];
+      if (p >= kWallPartnerBase && p != kNoPartner) return true;
+    }
+    return false;
+  }
+};
+
+template <class Exec, class Real>
+class ParticleMover final : public ParticleMovement {
+ public:
+  explicit ParticleMover(StepState<Real>& state) : st_(state) {}
+
+  void reserve(Index n) override {
+    st_.forces.force.resize(n);
+    if (st_.torque) st_.forces.torque.resize(n);
+    // Geometric growth, as DeviceArray's: ranks append ghosts every step, and
+    // growing to the exact size re-laid the whole history (through the host)
+    // at every new maximum of owned + ghosts: 90 ms per step in the mixer's
+    // case c on two ranks.
+    ContactHistory<Real>& h = st_.history;
+    if (st_.keeps_history() && std::size_t(n) > h.capacity)
+      grow_history(std::max(std::size_t(n), h.capacity + h.capacity / 4));
+  }
+
+  MessageHeader pack(const ParticleStore& s, const DeviceArray<Index>& which, bool with_history,
+                     DeviceArray<unsigned char>& out) const override;
+  void unpack(ParticleStore& s, const MessageHeader& h, const unsigned char* payload, bool as_ghosts) override;
+  void keep_owned(ParticleStore& s, const DeviceArray<Index>& keep) override;
+  void reorder(ParticleStore& s, const DeviceArray<Index>& order) override;
+  void append(ParticleStore& s, const ParticleRecords& r, bool as_ghosts) override;
+  void set_forces(const ParticleStore& s, const std::vector<Vec3d>& force, const std::vector<Vec3d>& torque) override {
+    st_.forces.force.from_host(narrowed(force, s.n_owned));
+    if (st_.torque) st_.forces.torque.from_host(narrowed(torque, s.n_owned));
+    reserve(s.size());
+  }
+  void set_history(const ParticleStore& s, const HostHistory& h) override;
+
+  std::vector<Vec3d> forces(const ParticleStore& s) const override { return widened(st_.forces.force, s.n_owned); }
+  std::vector<Vec3d> torques(const ParticleStore& s) const override {
+    if (!st_.torque) return std::vector<Vec3d>(s.n_owned);
+    return widened(st_.forces.torque, s.n_owned);
+  }
+  HostHistory history(const ParticleStore& s) const override;
+  std::vector<std::uint16_t> contact_counts(const ParticleStore& s) const override;
+  ParticleRecords wall_contact_history(const ParticleStore& s) const override;
+
+  void synchronize() const override { Exec::synchronize(); }
+  std::size_t bytes() const override {
+    std::size_t history = st_.history.partner.bytes();
+    for_each_history_field(st_.history, [&](const char*, unsigned, const auto& a) { history += a.bytes(); });
+    return st_.forces.force.bytes() + st_.forces.torque.bytes() + history + st_.staging.bytes();
+  }
+
+ private:
+  // What a message of `count` particles carries from this run.
+  MessageHeader message_header(Index count, bool with_history) const;
+  void grow_history(std::size_t capacity);
+  void keep_in_order(ParticleStore& s, const Index* order, Index n);
+  static std::vector<Vec3<Real>> narrowed(const std::vector<Vec3d>& v, Index n) {
+    if (v.size() != std::size_t(n)) throw std::invalid_argument("one force per owned particle expected");
+    std::vector<Vec3<Real>> out(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i) out[i] = Vec3<Real>(v[i]);
+    return out;
+  }
+  static std::vector<Vec3d> widened(const DeviceArray<Vec3<Real>>& a, Index n) {
+    std::vector<Vec3<Real>> h = a.to_host();
+    std::vector<Vec3d> out(n);
+    for (Index i = 0; i < n; ++i) out[i] = Vec3d(h[i]);
+    return out;
+  }
+
+  StepState<Real>& st_;
+};
+
+}  // namespace gs
+
+#include "engine/particle_mover_history.hpp"
+#include "engine/particle_mover_transfer.hpp"
