@@ -33,12 +33,6 @@ std::vector<Vec3d> owned_positions(const ParticleStore& s) {
   return x;
 }
 
-double interaction_range(const SceneSpec& scene) {
-  double r = 0;
-  for (const ParticleInit& p : scene.particles) r = std::max(r, p.radius);
-  return 2 * r;
-}
-
 }  // namespace
 
 DomainExchange::DomainExchange(Transport& transport, std::unique_ptr<Decomposition> decomposition, double halo,
@@ -205,28 +199,6 @@ long long DomainExchange::total(long long local) {
   std::vector<std::int64_t> v{local};
   transport_.sum(v);
   return v[0];
-}
-
-std::shared_ptr<DomainExchange> make_domain_exchange(const SceneSpec& scene, Transport& transport) {
-  std::vector<Vec3d> x;
-  x.reserve(scene.particles.size());
-  for (const ParticleInit& p : scene.particles) x.push_back(p.position);
-  return make_domain_exchange(scene, transport, x);
-}
-
-std::shared_ptr<DomainExchange> make_domain_exchange(const SceneSpec& scene, Transport& transport,
-                                                     const std::vector<Vec3d>& x) {
-  const double range = interaction_range(scene);
-  const DecompositionSpec& spec = scene.decomposition;
-  std::unique_ptr<Decomposition> d;
-  if (spec.method == DecompositionMethod::metis) {
-    d = std::make_unique<MetisDecomposition>(MetisDecomposition::from_positions(
-        scene.domain_min, scene.domain_max, range, transport.size(), x));
-  } else {
-    d = std::make_unique<SlabDecomposition>(SlabDecomposition::from_positions(
-        scene.domain_min, scene.domain_max, range, transport.size(), spec.axis, x));
-  }
-  return std::make_shared<DomainExchange>(transport, std::move(d), range, spec);
 }
 
 }  // namespace gs

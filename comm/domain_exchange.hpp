@@ -71,11 +71,4 @@ class DomainExchange final : public RankExchange {
   std::size_t sent_ = 0;         // particles trade() sent
 };
 
-// Partitions particles at `positions` (all of the run's) over the transport's
-// ranks; every rank computes the same partition from the same positions.
-std::shared_ptr<DomainExchange> make_domain_exchange(const SceneSpec& scene, Transport& transport,
-                                                     const std::vector<Vec3d>& positions);
-// The same for the scene's initial particles.
-std::shared_ptr<DomainExchange> make_domain_exchange(const SceneSpec& scene, Transport& transport);
-
 }  // namespace gs

@@ -6,6 +6,7 @@
 
 #include "engine/memory_estimate.hpp"
 #include "run/driver.hpp"
+#include "scene/particle_sources.hpp"
 #include "scene/scene_loader.hpp"
 
 namespace gs {
@@ -16,7 +17,7 @@ int command_check(const std::vector<std::string>& args) {
   print_warnings(scene);
   const MemoryEstimate m = estimate_memory(scene);
   std::printf("scene %s is valid\n", args[1].c_str());
-  std::printf("particles:      %zu\n", scene.particles.size());
+  std::printf("particles:      %zu\n", particle_count(scene));
   std::printf("walls:          %zu\n", scene.walls.size());
   std::printf("precision:      %s\n", precision_name(scene.precision));
   std::printf("contact time:   %.6g s\n", scene.contact_time);

@@ -5,6 +5,7 @@
 #include "contact/contact_models.hpp"
 #include "core/particle_fields.hpp"
 #include "neighbor/cell_grid.hpp"
+#include "scene/particle_sources.hpp"
 #include "walls/mesh.hpp"
 
 namespace gs {
@@ -28,8 +29,7 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
     per += slot * scene.contact_slots;
   }
   per += 2 * 8 + 2 * 4;                                   // sort keys and indices, double-buffered
-  double r = 0;
-  for (const auto& p : scene.particles) r = std::max(r, p.radius);
+  const double r = largest_radius(scene);
   MemoryEstimate m;
   m.bytes_per_particle = per;
   if (r > 0) {
@@ -46,7 +46,7 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
     // ownership and mesh id; per edge its ends.
     m.mesh_bytes = bins.bytes() + 48.0 * meshes.n_vertices() + 29.0 * meshes.n_triangles() + 8.0 * meshes.n_edges;
   }
-  m.total_bytes = per * double(scene.particles.size()) + m.cell_bytes + m.mesh_bytes;
+  m.total_bytes = per * double(particle_count(scene)) + m.cell_bytes + m.mesh_bytes;
   return m;
 }
 

@@ -7,6 +7,7 @@
 
 #include "contact/contact_time.hpp"
 #include "contact/contact_models.hpp"
+#include "scene/particle_sources.hpp"
 #include "scene/position_resolution.hpp"
 #include "walls/wall_motion.hpp"
 
@@ -17,10 +18,22 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-double largest_radius(const std::vector<ParticleInit>& particles) {
-  double r = 0;
-  for (const auto& p : particles) r = std::max(r, p.radius);
-  return r;
+// The scene without its particles: once a rank's own are in the store, a
+// second copy of the scene's (all of them, on every rank) would be dead weight.
+SceneSpec without_particles(const SceneSpec& scene) {
+  SceneSpec settings;
+  static_cast<SceneSettings&>(settings) = scene;
+  return settings;
+}
+
+// One store field from the particles, built on every thread; the host copy
+// lives only while it is uploaded, so setup holds one field at a time.
+template <class T, class Value>
+void upload_field(DeviceArray<T>& field, std::size_t n, Value&& value) {
+  std::vector<T> host(n);
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < long(n); ++i) host[std::size_t(i)] = value(std::size_t(i));
+  field.from_host(host);
 }
 
 template <class T>
@@ -33,19 +46,14 @@ std::vector<T> permuted(const std::vector<T>& v, const std::vector<std::size_t>&
 }  // namespace
 
 Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::shared_ptr<RankExchange> exchange)
-    : scene_(scene), options_(options), exchange_(std::move(exchange)) {
+    : scene_(without_particles(scene)), options_(options), exchange_(std::move(exchange)) {
   set_up(scene);
   move_walls(0.0);
   pose_meshes(0.0);
-  if (exchange_) {
-    std::vector<ParticleInit> mine;
-    for (const ParticleInit& p : scene.particles)
-      if (exchange_->owns(p.position)) mine.push_back(p);
-    upload(mine);
-    exchange_->refresh_ghosts(store_, kernels_->movement());
-  } else {
-    upload(scene.particles);
-  }
+  // Each rank generates only the particles it owns (lattices site by site).
+  RankExchange* split = exchange_.get();
+  upload(select_particles(scene, [split](const Vec3d& x) { return !split || split->owns(x); }));
+  if (exchange_) exchange_->refresh_ghosts(store_, kernels_->movement());
   // Forces at t = 0 for the first half kick.
   rebuild_neighbours();
   kernels_->forces().compute(store_, 0.0, 0);
@@ -53,7 +61,7 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
 
 Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::shared_ptr<RankExchange> exchange,
                        const RestartState& restart)
-    : scene_(scene), options_(options), exchange_(std::move(exchange)) {
+    : scene_(without_particles(scene)), options_(options), exchange_(std::move(exchange)) {
   set_up(scene);
   restore(restart);
   if (exchange_) exchange_->refresh_ghosts(store_, kernels_->movement());
@@ -70,7 +78,7 @@ void Simulation::set_up(const SceneSpec& scene) {
   store_.place_on(b);
   kernels_ = make_step_kernels({b, scene.precision, scene.model, scene.effects},
                                {scene.materials, scene.pairs, scene.contact_slots});
-  const double diameter = 2.0 * largest_radius(scene.particles);
+  const double diameter = 2.0 * largest_radius(scene);
   skin_ = kernels_->neighbours().uses_verlet_list() ? options_.verlet_skin * diameter : 0.0;
   grid_ = make_cell_grid(scene.domain_min, scene.domain_max, diameter + skin_);
   walls_ = scene.walls;
@@ -125,39 +133,25 @@ void Simulation::restore(const RestartState& r) {
 
 void Simulation::upload(const std::vector<ParticleInit>& particles) {
   const std::size_t n = particles.size();
-  std::vector<ParticleId> id(n);
-  std::vector<std::uint8_t> material(n), marker(n);
-  std::vector<float> radius(n), mass(n), inertia(n);
-  std::vector<Vec3d> position(n), velocity(n), angular_velocity(n);
-  std::vector<Quaternion> orientation(n, Quaternion{1, 0, 0, 0});
-  for (std::size_t i = 0; i < n; ++i) {
-    const ParticleInit& p = particles[i];
-    const double m = sphere_mass(p.radius, scene_.materials[p.material].density);
-    id[i] = p.id;
-    material[i] = std::uint8_t(p.material);
-    marker[i] = p.marker;
-    radius[i] = float(p.radius);
-    mass[i] = float(m);
-    inertia[i] = float(0.4 * m * p.radius * p.radius);
-    position[i] = p.position;
-    velocity[i] = p.velocity;
-    angular_velocity[i] = p.angular_velocity;
-    if (fp32_state(scene_.precision)) {
-      position[i] = on_fp32_grid(position[i]);
-      velocity[i] = on_fp32_grid(velocity[i]);
-      angular_velocity[i] = on_fp32_grid(angular_velocity[i]);
-    }
-  }
-  store_.id.from_host(id);
-  store_.material.from_host(material);
-  store_.marker.from_host(marker);
-  store_.radius.from_host(radius);
-  store_.mass.from_host(mass);
-  store_.inertia.from_host(inertia);
-  store_.position.from_host(position);
-  store_.velocity.from_host(velocity);
-  store_.angular_velocity.from_host(angular_velocity);
-  store_.orientation.from_host(orientation);
+  const std::vector<MaterialSpec>& materials = scene_.materials;
+  auto mass = [&](std::size_t i) {
+    return sphere_mass(particles[i].radius, materials[std::size_t(particles[i].material)].density);
+  };
+  // fp32 state: positions and velocities start on the fp32 grid they live on.
+  const bool fp32 = fp32_state(scene_.precision);
+  auto state = [fp32](const Vec3d& v) { return fp32 ? on_fp32_grid(v) : v; };
+  upload_field(store_.id, n, [&](std::size_t i) { return particles[i].id; });
+  upload_field(store_.material, n, [&](std::size_t i) { return std::uint8_t(particles[i].material); });
+  upload_field(store_.marker, n, [&](std::size_t i) { return particles[i].marker; });
+  upload_field(store_.radius, n, [&](std::size_t i) { return float(particles[i].radius); });
+  upload_field(store_.mass, n, [&](std::size_t i) { return float(mass(i)); });
+  upload_field(store_.inertia, n, [&](std::size_t i) {
+    return float(0.4 * mass(i) * particles[i].radius * particles[i].radius);
+  });
+  upload_field(store_.position, n, [&](std::size_t i) { return state(particles[i].position); });
+  upload_field(store_.velocity, n, [&](std::size_t i) { return state(particles[i].velocity); });
+  upload_field(store_.angular_velocity, n, [&](std::size_t i) { return state(particles[i].angular_velocity); });
+  upload_field(store_.orientation, n, [](std::size_t) { return Quaternion{1, 0, 0, 0}; });
   store_.n_owned = Index(n);
   store_.n_ghost = 0;
   ++store_.revision;

@@ -51,6 +51,7 @@ class Simulation {
   void mark(const MarkingSpec& m) { kernels_->mark_by_plane(store_, m); }
   double time() const { return time_; }
   long long step_count() const { return step_; }
+  // The scene's settings; its particles are not kept (they are in the store).
   const SceneSpec& scene() const { return scene_; }
   Backend backend() const { return options_.backend; }
   Index particle_count() const { return store_.n_owned; }  // owned by this rank

@@ -17,6 +17,7 @@
 #include "backend/memory.hpp"
 #include "comm/domain_exchange.hpp"
 #include "comm/rank_agreement.hpp"
+#include "comm/scene_split.hpp"
 #include "comm/device_link.hpp"
 #include "engine/simulation.hpp"
 #include "io/fnv1a.hpp"
@@ -28,6 +29,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 }  // namespace
 
@@ -284,6 +286,7 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
 int run_scene(const RunRequest& request, Transport& transport) {
   // Each phase a rank can fail alone ends with every rank agreeing on it.
   const RunRequest& a = request;
+  const auto setup_start = Clock::now();
   std::optional<SceneSpec> loaded;
   std::uint64_t hash = 0;
   on_every_rank(transport, [&] {
@@ -310,15 +313,22 @@ int run_scene(const RunRequest& request, Transport& transport) {
       expect.scene_hash = hash;
       restart = restart_state(read_checkpoint(a.restart, expect));
     }
-    if (transport.size() > 1)
-      split = restart ? make_domain_exchange(scene, transport, restart->particles.position)
-                      : make_domain_exchange(scene, transport);
   });
   if (restart) expect_same_step_everywhere(transport, a.restart, restart->step);
+  const double load_seconds = seconds_since(setup_start);
+  // split_scene's one collective (summing the counts) comes before anything
+  // in it can fail, so every rank reaches it.
+  if (transport.size() > 1)
+    on_every_rank(transport, [&] {
+      split = restart ? split_restart(scene, transport, restart->particles.position) : split_scene(scene, transport);
+    });
+  const double split_seconds = seconds_since(setup_start) - load_seconds;
   // Collective from here on: an error on one rank alone in the middle of an
   // exchange can only be reported by ending every rank (main.cpp).
   std::unique_ptr<Simulation> sim = start(scene, a, transport, split, restart, own_gpu);
   restart.reset();  // the simulation holds the state now
+  loaded->particles = {};  // and this rank's own particles
+  const double setup_seconds = seconds_since(setup_start);
   RankExchange* exchange = sim->exchange();
   std::unique_ptr<RunOutput> output;
   on_every_rank(transport, [&] {
@@ -331,6 +341,8 @@ int run_scene(const RunRequest& request, Transport& transport) {
   out.log("grainstorm %s: %s, %lld particles, backend %s, %d rank%s, dt = %.4g s (contact time %.4g s), steps %lld to %lld\n",
           GS_VERSION, a.scene.c_str(), particles, backend_name(a.backend), transport.size(),
           transport.size() > 1 ? "s" : "", scene.time_step, scene.contact_time, sim->step_count(), total);
+  out.log("set up in %.2f s (scene %.2f s, decomposition %.2f s, particles and first forces %.2f s)\n",
+          setup_seconds, load_seconds, split_seconds, setup_seconds - load_seconds - split_seconds);
   if (!a.restart.empty()) {
     out.resume(sim->step_count());
     out.log("restarted from %s at step %lld\n", a.restart.c_str(), sim->step_count());

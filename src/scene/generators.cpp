@@ -6,6 +6,7 @@
 #include <random>
 #include <sstream>
 
+#include "scene/particle_sources.hpp"
 #include "scene/sphere_grid.hpp"
 
 namespace gs {
@@ -83,11 +84,6 @@ ParticleInit make_particle(const ParticleTemplate& t, std::size_t id, const Vec3
   return p;
 }
 
-void check_id_room(std::size_t existing, std::size_t count) {
-  if (count > std::size_t(kMaxParticleId) + 1 - std::min(existing, std::size_t(kMaxParticleId) + 1))
-    throw GenerateError("too many particles: ids would exceed the 32-bit id range");
-}
-
 // The two grids of a fill: exact overlap queries, and a fine bitmap of space
 // no further centre can use, which rejects most doomed trials for one bit.
 struct FillGrids {
@@ -101,13 +97,13 @@ struct FillGrids {
   }
 
   // Spheres of earlier sets that reach into the box [lo, hi] are obstacles.
-  void add_obstacles(const std::vector<ParticleInit>& earlier, const Vec3d& lo, const Vec3d& hi) {
-    for (const ParticleInit& p : earlier) {
+  void add_obstacles(const EarlierSpheres& earlier, const Vec3d& lo, const Vec3d& hi) {
+    earlier([&](const ParticleInit& p) {
       const Vec3d& c = p.position;
       const double r = p.radius;
       if (c.x + r > lo.x && c.x - r < hi.x && c.y + r > lo.y && c.y - r < hi.y && c.z + r > lo.z && c.z - r < hi.z)
         insert(c, r);
-    }
+    });
   }
 };
 
@@ -130,6 +126,11 @@ bool place(const FillRegion& reg, FillGrids& g, double r, int max_attempts, std:
 constexpr std::size_t kMaxFillCount = 200000000;
 
 }  // namespace
+
+void check_id_room(std::size_t existing, std::size_t count) {
+  if (count > std::size_t(kMaxParticleId) + 1 - std::min(existing, std::size_t(kMaxParticleId) + 1))
+    throw GenerateError("too many particles: ids would exceed the 32-bit id range");
+}
 
 double region_volume(const FillRegion& reg) {
   if (reg.kind == FillRegion::Kind::cylinder) return M_PI * reg.radius * reg.radius * reg.length;
@@ -173,17 +174,10 @@ std::size_t lattice_count(const LatticeSpec& s) {
 }
 
 void generate_lattice(const LatticeSpec& s, std::vector<ParticleInit>& out) {
-  const std::size_t nx = lattice_sites(s.min.x, s.max.x, s.spacing);
-  const std::size_t ny = lattice_sites(s.min.y, s.max.y, s.spacing);
-  const std::size_t nz = lattice_sites(s.min.z, s.max.z, s.spacing);
   check_id_room(out.size(), lattice_count(s));  // refuses before nx * ny * nz could overflow
-  out.reserve(out.size() + nx * ny * nz);
-  for (std::size_t k = 0; k < nz; ++k)
-    for (std::size_t j = 0; j < ny; ++j)
-      for (std::size_t i = 0; i < nx; ++i) {
-        const Vec3d pos = s.min + s.spacing * Vec3d(double(i), double(j), double(k));
-        out.push_back(make_particle(s.tmpl, out.size(), pos, s.radius));
-      }
+  const LatticeSites sites(s, ParticleId(out.size()));
+  out.reserve(out.size() + sites.count());
+  for (std::size_t k = 0; k < sites.count(); ++k) out.push_back(sites.at(k));
 }
 
 std::vector<double> random_fill_radii(const SizeSpec& size, std::size_t count, std::uint64_t seed) {
@@ -221,7 +215,17 @@ std::vector<double> random_fill_radii(const SizeSpec& size, std::size_t count, s
 }
 
 void generate_random_fill(const RandomFillSpec& s, std::vector<ParticleInit>& out) {
-  check_id_room(out.size(), s.count);
+  // The earlier spheres are visited before any is appended, so `out` is stable meanwhile.
+  const std::size_t first_id = out.size();
+  const EarlierSpheres earlier = [&out, first_id](const SphereVisitor& visit) {
+    for (std::size_t i = 0; i < first_id; ++i) visit(out[i]);
+  };
+  generate_random_fill(s, earlier, first_id, out);
+}
+
+void generate_random_fill(const RandomFillSpec& s, const EarlierSpheres& earlier, std::size_t first_id,
+                          std::vector<ParticleInit>& out) {
+  check_id_room(first_id, s.count);
   if (s.count == 0) return;
   // The grids index their entries with 32-bit integers.
   if (s.count > kMaxFillCount)
@@ -246,7 +250,7 @@ void generate_random_fill(const RandomFillSpec& s, std::vector<ParticleInit>& ou
   // r_min / 2 let a sphere's exclusion ball cover whole cells (8 bytes per particle at most).
   FillGrids g{SphereGrid(lo, hi, 2 * mean_r, s.count),
               TakenCells(centre_lo, centre_hi, 0.5 * r_min, 64.0 * double(s.count) + 65536.0), r_min};
-  g.add_obstacles(out, lo, hi);
+  g.add_obstacles(earlier, lo, hi);
 
   std::mt19937_64 rng(s.seed);
   out.reserve(out.size() + s.count);
@@ -255,7 +259,7 @@ void generate_random_fill(const RandomFillSpec& s, std::vector<ParticleInit>& ou
     if (!place(s.region, g, radii[i], s.max_attempts, rng, c))
       too_full(i, s.count, fraction, "no free spot found for a particle");
     g.insert(c, radii[i]);
-    out.push_back(make_particle(s.tmpl, out.size(), c, radii[i]));
+    out.push_back(make_particle(s.tmpl, first_id + i, c, radii[i]));
   }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <vector>
 
@@ -14,22 +15,6 @@ struct GenerateError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Properties shared by every particle of one generated set.
-struct ParticleTemplate {
-  int material = 0;
-  Vec3d velocity;
-  Vec3d angular_velocity;
-  std::uint8_t marker = 0;
-};
-
-// Simple cubic lattice: centres min + spacing * (i, j, k) that lie inside [min, max].
-struct LatticeSpec {
-  ParticleTemplate tmpl;
-  double radius = 0;
-  Vec3d min, max;
-  double spacing = 0;
-};
-
 // Number of lattice sites along one axis of [lo, hi] (0 when hi < lo), and
 // in all; GenerateError when more than the particle ids.
 std::size_t lattice_sites(double lo, double hi, double spacing);
@@ -37,6 +22,10 @@ std::size_t lattice_count(const LatticeSpec& spec);
 
 // Appends the lattice to `out`; ids continue from out.size().
 void generate_lattice(const LatticeSpec& spec, std::vector<ParticleInit>& out);
+
+// GenerateError when `count` more particles after `existing` ones would
+// exceed the particle ids.
+void check_id_room(std::size_t existing, std::size_t count);
 
 // Region that must contain a random fill: an axis-aligned box or a cylinder.
 struct FillRegion {
@@ -82,6 +71,15 @@ std::vector<double> random_fill_radii(const SizeSpec& size, std::size_t count, s
 // Ids continue from out.size(). Throws GenerateError when the region is too
 // full (or for more than 2e8 spheres).
 void generate_random_fill(const RandomFillSpec& spec, std::vector<ParticleInit>& out);
+
+// Calls its argument for every sphere of the earlier sets (obstacles to a fill).
+using SphereVisitor = std::function<void(const ParticleInit&)>;
+using EarlierSpheres = std::function<void(const SphereVisitor&)>;
+
+// The same with the earlier sets visited by `earlier` rather than held in
+// `out`; ids start at first_id.
+void generate_random_fill(const RandomFillSpec& spec, const EarlierSpheres& earlier, std::size_t first_id,
+                          std::vector<ParticleInit>& out);
 
 // Finds one pair of overlapping spheres (centre distance below the sum of the
 // radii by more than a relative `tolerance`), first < second. Returns false

@@ -5,6 +5,8 @@
 #include <limits>
 #include <sstream>
 
+#include "scene/particle_sources.hpp"
+
 namespace gs {
 
 double fp32_spacing(double x) {
@@ -13,12 +15,11 @@ double fp32_spacing(double x) {
 }
 
 std::string fp32_state_problem(const SceneSpec& scene) {
-  if (!fp32_state(scene.precision) || scene.particles.empty()) return "";
+  if (!fp32_state(scene.precision) || particle_count(scene) == 0) return "";
   double far = 0;
   for (const Vec3d& c : {scene.domain_min, scene.domain_max})
     far = std::max({far, std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
-  double r_min = std::numeric_limits<double>::infinity();
-  for (const ParticleInit& p : scene.particles) r_min = std::min(r_min, p.radius);
+  const double r_min = smallest_radius(scene);
   const double spacing = fp32_spacing(far);
   if (spacing <= kFp32SpacingOfRadius * r_min) return "";
   std::ostringstream m;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "scene/mixing_spec.hpp"
+#include "scene/particle_sets.hpp"
 #include "core/materials.hpp"
 #include "core/types.hpp"
 #include "core/vec3.hpp"
@@ -17,15 +18,6 @@ namespace gs {
 // A bad scene: the message names the key and the line of the file.
 struct SceneError : std::runtime_error {
   using std::runtime_error::runtime_error;
-};
-
-// One particle as created at t = 0.
-struct ParticleInit {
-  ParticleId id = 0;
-  int material = 0;
-  double radius = 0;
-  Vec3d position, velocity, angular_velocity;
-  std::uint8_t marker = 0;
 };
 
 struct OutputSpec {
@@ -56,7 +48,8 @@ struct MarkingSpec {
   std::uint8_t back = 0;     // marker elsewhere
 };
 
-struct SceneSpec {
+// Everything a scene sets but its particles.
+struct SceneSettings {
   std::string path;                  // file it came from, for messages
   Vec3d domain_min, domain_max;      // particles must stay inside [m]
   Vec3d gravity;                     // [m/s^2]
@@ -65,7 +58,6 @@ struct SceneSpec {
   unsigned effects = 0;              // set of Effect bits
   std::vector<MaterialSpec> materials;
   std::vector<PairSpec> pairs;       // every unordered pair of materials that can touch
-  std::vector<ParticleInit> particles;
   std::vector<Wall> walls;
   std::vector<std::string> wall_names;
   MeshSet meshes;                    // triangle-mesh walls (docs/MESHES.md); names in meshes.names
@@ -82,6 +74,16 @@ struct SceneSpec {
   // "<file>:<line>: <key path>: <what>" for each value the scene sets that the
   // run ignores (a parameter of an effect that is off); check and run print them.
   std::vector<std::string> warnings;
+};
+
+struct SceneSpec : SceneSettings {
+  // The initial particles, in two kinds of sets whose ids interleave in the
+  // file's order: particles given one by one (lists, random fills, scenes
+  // built in code), ascending ids; and lattices, kept as their description
+  // and generated where needed (scene/particle_sources.hpp), so that no rank
+  // ever holds every particle of a big lattice.
+  std::vector<ParticleInit> particles;
+  std::vector<LatticeSource> lattices;
 };
 
 }  // namespace gs

@@ -10,6 +10,7 @@
 #include "io/snapshot_fields.hpp"
 #include "neighbor/cell_grid.hpp"
 #include "scene/generators.hpp"
+#include "scene/particle_sources.hpp"
 #include "scene/position_resolution.hpp"
 #include "scene/scene_sections.hpp"
 
@@ -173,7 +174,7 @@ bool has_pair(const SceneSpec& s, int a, int b) {
 void require_pairs(const SceneSpec& s, const Val& where) {
   const std::size_t n = s.materials.size();
   std::vector<char> on_particle(n, 0), on_wall(n, 0);
-  for (const auto& p : s.particles) on_particle[p.material] = 1;
+  for_each_radius(s, [&](int material, double) { on_particle[std::size_t(material)] = 1; });
   for (const auto& w : s.walls) on_wall[w.material] = 1;
   for (const auto m : s.meshes.material) on_wall[m] = 1;
   for (std::size_t a = 0; a < n; ++a)
@@ -197,11 +198,7 @@ void parse_pairs(const Map& top, SceneSpec& s) {
   require_pairs(s, list);
 }
 
-double largest_diameter(const SceneSpec& s) {
-  double r = 0;
-  for (const auto& p : s.particles) r = std::max(r, p.radius);
-  return 2 * r;
-}
+double largest_diameter(const SceneSpec& s) { return 2 * largest_radius(s); }
 
 // The run's contact search lays cells of at least the largest diameter over
 // the domain (walls/mesh.hpp bins meshes in the same cells); refused here

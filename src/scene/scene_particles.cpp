@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "scene/generators.hpp"
+#include "scene/particle_sources.hpp"
 #include "scene/scene_loader.hpp"
 #include "scene/scene_sections.hpp"
 
@@ -52,7 +53,10 @@ void add_lattice(SceneSpec& s, const Val& v) {
   std::size_t sites = 0;
   generate(v, [&] { sites = lattice_count(spec); });
   if (sites == 0) fail(v, "no lattice site lies in [min, max]: min exceeds max on some axis");
-  generate(v, [&] { generate_lattice(spec, s.particles); });
+  // Kept as its description: ranks generate the sites they need (particle_sources.hpp).
+  const std::size_t first = particle_count(s);
+  generate(v, [&] { check_id_room(first, sites); });
+  s.lattices.push_back({spec, ParticleId(first), sites});
 }
 
 FillRegion parse_region(const Val& v) {
@@ -119,23 +123,28 @@ void add_random_fill(SceneSpec& s, const Val& v) {
   spec.count = std::size_t(integer(m.get("count"), 1, kMaxParticleId));
   spec.size = parse_sizes(m);
   if (m.has("seed")) spec.seed = std::uint64_t(integer(m.get("seed"), 0, LLONG_MAX));
-  generate(v, [&] { generate_random_fill(spec, s.particles); });
+  // Random sequential addition is serial: every rank places the whole fill,
+  // around the spheres of the earlier sets.
+  const std::size_t first = particle_count(s);
+  const EarlierSpheres earlier = [&s](const SphereVisitor& visit) { for_each_particle(s, visit); };
+  generate(v, [&] { generate_random_fill(spec, earlier, first, s.particles); });
 }
 
 void add_list(SceneSpec& s, const Val& v, std::vector<Origin>& origins) {
   for_each_item(v, [&](const Val& item, std::size_t) {
     const Map m(item, {"position", "radius", "material", "velocity", "angular_velocity", "marker"});
     const ParticleTemplate t = parse_template(s, m);
-    if (s.particles.size() > kMaxParticleId) fail(item, "too many particles for 32-bit ids");
+    const std::size_t id = particle_count(s);
+    if (id > kMaxParticleId) fail(item, "too many particles for 32-bit ids");
     ParticleInit p;
-    p.id = ParticleId(s.particles.size());
+    p.id = ParticleId(id);
     p.material = t.material;
     p.radius = positive(m.get("radius"));
     p.position = vec3(m.get("position"));
     p.velocity = t.velocity;
     p.angular_velocity = t.angular_velocity;
     p.marker = t.marker;
-    origins.push_back({s.particles.size(), item});
+    origins.push_back({id, item});
     s.particles.push_back(p);
   });
 }
@@ -147,18 +156,20 @@ std::string describe(const ParticleInit& p) {
 // Rounding in generated positions must not turn "touching" into "overlapping".
 constexpr double kTouchTolerance = 1e-9;
 
-void check_fit(const SceneSpec& s, const ParticleInit& p, const Val& where) {
+// What keeps p from fitting the domain and the walls at t = 0; empty when it fits.
+std::string misfit(const SceneSpec& s, const ParticleInit& p) {
   const double slack = kTouchTolerance * p.radius;
   const Vec3d& c = p.position;
   const Vec3d &lo = s.domain_min, &hi = s.domain_max;
   const double r = p.radius - slack;
   if (c.x - r < lo.x || c.y - r < lo.y || c.z - r < lo.z || c.x + r > hi.x || c.y + r > hi.y || c.z + r > hi.z)
-    fail(where, describe(p) + " is not inside the domain " + str(lo) + " .. " + str(hi));
+    return describe(p) + " is not inside the domain " + str(lo) + " .. " + str(hi);
   for (std::size_t w = 0; w < s.walls.size(); ++w) {
     const double depth = wall_penetration(s.walls[w], c, p.radius);
     if (depth > slack)
-      fail(where, describe(p) + " cuts " + str(depth) + " m into wall " + quoted(s.wall_names[w]) + " at t = 0");
+      return describe(p) + " cuts " + str(depth) + " m into wall " + quoted(s.wall_names[w]) + " at t = 0";
   }
+  return "";
 }
 
 const Val& origin_of(const std::vector<Origin>& origins, std::size_t particle) {
@@ -167,21 +178,31 @@ const Val& origin_of(const std::vector<Origin>& origins, std::size_t particle) {
   return std::prev(it)->where;
 }
 
+// The first particle (in id order) that does not fit is reported; the
+// search runs on every thread, over lattices generated chunk by chunk.
+void check_fit(const SceneSpec& s, const std::vector<Origin>& origins) {
+  const std::size_t n = particle_count(s);
+  const std::size_t bad = find_first(s, 0, n, [&s](const ParticleInit& p) { return !misfit(s, p).empty(); });
+  if (bad == n) return;
+  std::vector<ParticleInit> p;
+  ParticleStream(s).generate(bad, bad + 1, p);
+  fail(origin_of(origins, bad), misfit(s, p.front()));
+}
+
 // `generated_alone`: the particles are one lattice or random fill, which
 // cannot overlap among themselves, so the costly pairwise check is skipped.
+// Otherwise every particle is generated for it (memory for all of them).
 void check_packing(const SceneSpec& s, const std::vector<Origin>& origins, bool generated_alone) {
-  for (std::size_t k = 0; k < origins.size(); ++k) {
-    const std::size_t end = k + 1 < origins.size() ? origins[k + 1].begin : s.particles.size();
-    for (std::size_t i = origins[k].begin; i < end; ++i) check_fit(s, s.particles[i], origins[k].where);
-  }
+  check_fit(s, origins);
+  if (generated_alone) return;
+  const std::vector<ParticleInit> all = all_particles(s);
   std::size_t a = 0, b = 0;
   bool overlap = false;
-  if (!generated_alone)
-    generate(origins.front().where, [&] { overlap = find_overlap(s.particles, a, b, kTouchTolerance); });
+  generate(origins.front().where, [&] { overlap = find_overlap(all, a, b, kTouchTolerance); });
   if (overlap) {
     const Val& first = origin_of(origins, a);
-    fail(origin_of(origins, b), describe(s.particles[b]) + " overlaps " + describe(s.particles[a]) + " (" +
-                                    first.path + ", line " + std::to_string(first.line) + ")");
+    fail(origin_of(origins, b), describe(all[b]) + " overlaps " + describe(all[a]) + " (" + first.path +
+                                    ", line " + std::to_string(first.line) + ")");
   }
 }
 
@@ -198,12 +219,12 @@ void parse_particles(const Map& top, SceneSpec& s) {
     const Val set = m.get(kind);
     ++sets;
     any_list = any_list || kind == "list";
-    origins.push_back({s.particles.size(), set});
+    origins.push_back({particle_count(s), set});
     if (kind == "lattice") add_lattice(s, set);
     if (kind == "random_fill") add_random_fill(s, set);
     if (kind == "list") add_list(s, set, origins);
   });
-  if (s.particles.empty()) fail(list, "the scene has no particles");
+  if (particle_count(s) == 0) fail(list, "the scene has no particles");
   check_packing(s, origins, sets == 1 && !any_list);
 }
 

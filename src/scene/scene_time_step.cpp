@@ -3,13 +3,17 @@
 #include <algorithm>
 #include <limits>
 
+#include "scene/particle_sources.hpp"
+
 namespace gs {
 
 ContactScene contact_scene(const SceneSpec& s) {
   ContactScene c{s.model, s.effects, s.materials, s.pairs, {}};
   c.smallest_radius.assign(s.materials.size(), std::numeric_limits<double>::infinity());
-  for (const ParticleInit& p : s.particles)
-    c.smallest_radius[p.material] = std::min(c.smallest_radius[p.material], p.radius);
+  for_each_radius(s, [&c](int material, double radius) {
+    double& r = c.smallest_radius[std::size_t(material)];
+    r = std::min(r, radius);
+  });
   return c;
 }
 

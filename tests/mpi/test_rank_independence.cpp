@@ -14,6 +14,7 @@
 #include "comm/device_link.hpp"
 #include "comm/domain_exchange.hpp"
 #include "comm/records_codec.hpp"
+#include "comm/scene_split.hpp"
 #include "comm/snapshot_gather.hpp"
 #include "io/state_digest.hpp"
 #include "scene/generators.hpp"
@@ -88,7 +89,7 @@ bool gpu_ranks_ready() {
 void expect_rank_independent(const SceneSpec& scene, long long steps, RunOptions options = {}) {
   Simulation one(scene, options);
   one.run(steps);
-  auto exchange = make_domain_exchange(scene, world());
+  auto exchange = split_scene(scene, world());
   if (options.backend == Backend::cuda) exchange->use_device_link(make_nccl_link(world()));
   Simulation many(scene, options, exchange);
   many.run(steps);
@@ -218,6 +219,35 @@ TEST(RankIndependence, CompressedLatticeWithManyContacts) {
   expect_rank_independent(compressed_lattice_scene(), kCompressedSteps);
 }
 
+// A lattice kept as its description: each rank generates and holds only the
+// particles it owns, and the run is the one-rank run, bit for bit.
+TEST(RankIndependence, LatticeSetUpHoldsOnlyEachRanksOwn) {
+  SceneSpec s = frictional_box(0.012, 0.03);
+  LatticeSpec l;
+  l.radius = 0.0005;
+  l.spacing = 0.0011;
+  l.min = {0.0006, 0.0006, 0.0006};
+  l.max = {0.0114, 0.0114, 0.025};
+  const std::size_t n = lattice_count(l);
+  s.lattices.push_back({l, 0, n});
+  s.time_step = 1e-5;
+  const auto exchange = split_scene(s, world());
+  Simulation many(s, RunOptions{}, exchange);
+  const ParticleSnapshot mine = many.snapshot();
+  if (world().size() > 1) EXPECT_LT(mine.size(), n) << "a rank holds every particle";
+  for (const Vec3d& x : mine.position) EXPECT_TRUE(exchange->owns(x));
+  many.run(20);
+  const ParticleSnapshot all = gather_snapshot(world(), many.snapshot());
+  if (world().rank() != 0) return;
+  Simulation one(s, RunOptions{});
+  one.run(20);
+  const ParticleSnapshot ref = one.snapshot();
+  ASSERT_EQ(all.size(), n) << "particles lost or duplicated";
+  EXPECT_TRUE(same_bits(all.id, ref.id));
+  EXPECT_TRUE(same_bits(all.position, ref.position));
+  EXPECT_TRUE(same_bits(all.velocity, ref.velocity));
+}
+
 // A CPU rank searches each particle's touching partners in a buffer of 128
 // (TouchingInIdOrder): a sphere touched by 135 small ones stops the run on
 // every rank with a fault that says so, instead of losing contacts.
@@ -241,7 +271,7 @@ TEST(RankIndependence, SphereTouchedByMoreThan128IsAFaultOnCpuRanks) {
   for (std::size_t i = 0; i < s.particles.size(); ++i) s.particles[i].id = ParticleId(i);
   s.decomposition.axis = 2;
   s.time_step = 1e-6;
-  Simulation many(s, RunOptions{}, make_domain_exchange(s, world()));
+  Simulation many(s, RunOptions{}, split_scene(s, world()));
   try {
     many.run(5);
     ADD_FAILURE() << "135 touching spheres were accepted";

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "scene/scene_time_step.hpp"
+#include "scene/particle_sources.hpp"
 #include "scene/scene_loader.hpp"
 
 namespace gs {
@@ -79,14 +80,16 @@ TEST(SceneLoader, GoodSceneParses) {
   EXPECT_DOUBLE_EQ(s.pairs[0].stiffness_rolling, 2000.0 / 7.0);
   EXPECT_EQ(s.pairs[1].restitution, 0.6);
 
-  ASSERT_EQ(s.particles.size(), 4u * 7u * 10u + 1u);
-  for (std::size_t i = 0; i < s.particles.size(); ++i) EXPECT_EQ(s.particles[i].id, i);
-  const ParticleInit& last = s.particles.back();
+  ASSERT_EQ(s.lattices.size(), 1u);  // kept as its description, not as particles
+  const std::vector<ParticleInit> all = all_particles(s);
+  ASSERT_EQ(all.size(), 4u * 7u * 10u + 1u);
+  for (std::size_t i = 0; i < all.size(); ++i) EXPECT_EQ(all[i].id, i);
+  const ParticleInit& last = all.back();
   EXPECT_EQ(last.radius, 0.002);
   EXPECT_EQ(last.velocity.x, 1);
   EXPECT_EQ(last.marker, 7);
   EXPECT_EQ(last.material, 0);
-  EXPECT_EQ(s.particles[0].position.x, 0.01);
+  EXPECT_EQ(all[0].position.x, 0.01);
 
   ASSERT_EQ(s.walls.size(), 6u);
   EXPECT_EQ(s.wall_names[0], "box.xmin");
@@ -348,9 +351,10 @@ TEST(SceneLoader, RandomFillAndDistributionInScene) {
       "      count: 1000\n"
       "      diameter_distribution: [{diameter: 0.002, fraction: 0.25}, {diameter: 0.001, fraction: 0.75}]\n";
   const SceneSpec s = parse_scene(edit("  - list:\n", fill + "  - list:\n"), "s");
-  ASSERT_EQ(s.particles.size(), 280u + 1000u + 1u);
+  const std::vector<ParticleInit> all = all_particles(s);
+  ASSERT_EQ(all.size(), 280u + 1000u + 1u);
   int big = 0;
-  for (std::size_t i = 280; i < 1280; ++i) big += s.particles[i].radius == 0.001;
+  for (std::size_t i = 280; i < 1280; ++i) big += all[i].radius == 0.001;
   EXPECT_EQ(big, 250);
 }
 
@@ -359,7 +363,7 @@ TEST(SceneLoader, DemoSceneLoads) {
   const std::string demo = here.substr(0, here.rfind("tests/scene/")) + "cases/demo/settle.yaml";
   if (!std::ifstream(demo)) GTEST_SKIP() << "no " << demo;
   const SceneSpec s = load_scene(demo);
-  EXPECT_EQ(s.particles.size(), 2000u);
+  EXPECT_EQ(particle_count(s), 2000u);
   EXPECT_EQ(s.walls.size(), 6u);
   EXPECT_TRUE(s.effects & kFriction);
   // Cheap enough for the demo's one-minute budget: ~23k steps of 2000 spheres.

@@ -202,9 +202,13 @@ struct RunRecord {
 // overlaps after each.
 inline RunRecord run_and_watch(Simulation& sim, int samples, long long steps_per_sample, double energy_scale,
                                const Vec3d& energy_reference = {}) {
-  const SceneSpec& scene = sim.scene();
+  // The simulation keeps its scene without the particles (they are in its
+  // store): the ids to expect are those it starts with.
+  SceneSpec scene = sim.scene();
+  const ParticleSnapshot start = sim.snapshot();
+  for (ParticleId id : start.id) scene.particles.push_back(ParticleInit{id, 0, 0, {}, {}, {}, 0});
   RunRecord r;
-  const double e0 = mechanical_energy(sim.snapshot(), scene.gravity, energy_reference);
+  const double e0 = mechanical_energy(start, scene.gravity, energy_reference);
   for (int k = 0; k < samples && r.failures == 0; ++k) {
     sim.run(steps_per_sample);
     const ParticleSnapshot s = sim.snapshot();

@@ -1,0 +1,183 @@
+#include "scene/particle_sources.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "scene/generators.hpp"
+
+namespace gs {
+
+LatticeSites::LatticeSites(const LatticeSpec& spec, ParticleId first_id)
+    : spec_(spec),
+      first_id_(first_id),
+      nx_(lattice_sites(spec.min.x, spec.max.x, spec.spacing)),
+      ny_(lattice_sites(spec.min.y, spec.max.y, spec.spacing)),
+      nz_(lattice_sites(spec.min.z, spec.max.z, spec.spacing)) {}
+
+ParticleInit LatticeSites::at(std::size_t site) const {
+  const std::size_t i = site % nx_, j = (site / nx_) % ny_, k = site / (nx_ * ny_);
+  ParticleInit p;
+  p.id = ParticleId(first_id_ + site);
+  p.material = spec_.tmpl.material;
+  p.radius = spec_.radius;
+  // The serial generator's expression, so the bits are its bits.
+  p.position = spec_.min + spec_.spacing * Vec3d(double(i), double(j), double(k));
+  p.velocity = spec_.tmpl.velocity;
+  p.angular_velocity = spec_.tmpl.angular_velocity;
+  p.marker = spec_.tmpl.marker;
+  return p;
+}
+
+ParticleStream::ParticleStream(const SceneSpec& scene) : scene_(scene) {
+  const std::vector<ParticleInit>& listed = scene.particles;
+  std::size_t e = 0;
+  auto add = [&](const LatticeSource* lattice, std::size_t offset, std::size_t count) {
+    if (count == 0) return;
+    segments_.push_back({lattice, offset, count_, count});
+    count_ += count;
+  };
+  for (const LatticeSource& l : scene.lattices) {
+    const std::size_t run = e;
+    while (e < listed.size() && listed[e].id < l.first_id) ++e;
+    add(nullptr, run, e - run);
+    sites_.emplace_back(l.spec, l.first_id);
+    add(&l, 0, l.count);
+  }
+  add(nullptr, e, listed.size() - e);
+}
+
+void ParticleStream::generate(std::size_t first, std::size_t last, std::vector<ParticleInit>& out) const {
+  last = std::min(last, count_);
+  if (first >= last) return;
+  auto seg = std::upper_bound(segments_.begin(), segments_.end(), first,
+                              [](std::size_t i, const Segment& s) { return i < s.begin; });
+  for (--seg; first < last && seg != segments_.end(); ++seg) {
+    const std::size_t from = first - seg->begin, to = std::min(last - seg->begin, seg->count);
+    if (seg->lattice) {
+      const LatticeSites& sites = sites_[std::size_t(seg->lattice - scene_.lattices.data())];
+      for (std::size_t k = from; k < to; ++k) out.push_back(sites.at(k));
+    } else {
+      const auto begin = scene_.particles.begin() + std::ptrdiff_t(seg->offset);
+      out.insert(out.end(), begin + std::ptrdiff_t(from), begin + std::ptrdiff_t(to));
+    }
+    first = seg->begin + to;
+  }
+}
+
+std::size_t particle_count(const SceneSpec& scene) {
+  std::size_t n = scene.particles.size();
+  for (const LatticeSource& l : scene.lattices) n += l.count;
+  return n;
+}
+
+void for_each_radius(const SceneSpec& scene, const std::function<void(int, double)>& visit) {
+  for (const ParticleInit& p : scene.particles) visit(p.material, p.radius);
+  for (const LatticeSource& l : scene.lattices)
+    if (l.count > 0) visit(l.spec.tmpl.material, l.spec.radius);
+}
+
+double largest_radius(const SceneSpec& scene) {
+  double r = 0;
+  for_each_radius(scene, [&](int, double radius) { r = std::max(r, radius); });
+  return r;
+}
+
+double smallest_radius(const SceneSpec& scene) {
+  double r = std::numeric_limits<double>::infinity();
+  for_each_radius(scene, [&](int, double radius) { r = std::min(r, radius); });
+  return r;
+}
+
+namespace {
+
+// Particles handled per task: big enough to amortise a task, small enough
+// to spread a lattice over many threads.
+constexpr std::size_t kChunk = std::size_t(1) << 16;
+
+// Calls work(chunk, its particles) for the chunks of [first, last) on every
+// thread; chunk c holds particles first + c kChunk onwards.
+template <class Work>
+void in_chunks(const ParticleStream& stream, std::size_t first, std::size_t last, Work&& work) {
+  const long chunks = long((last - first + kChunk - 1) / kChunk);
+#pragma omp parallel
+  {
+    std::vector<ParticleInit> buffer;
+#pragma omp for schedule(dynamic)
+    for (long c = 0; c < chunks; ++c) {
+      const std::size_t a = first + std::size_t(c) * kChunk;
+      buffer.clear();
+      stream.generate(a, std::min(last, a + kChunk), buffer);
+      work(std::size_t(c), buffer);
+    }
+  }
+}
+
+}  // namespace
+
+void for_each_particle(const SceneSpec& scene, const std::function<void(const ParticleInit&)>& visit) {
+  const ParticleStream stream(scene);
+  std::vector<ParticleInit> buffer;
+  for (std::size_t a = 0; a < stream.count(); a += kChunk) {
+    buffer.clear();
+    stream.generate(a, std::min(stream.count(), a + kChunk), buffer);
+    for (const ParticleInit& p : buffer) visit(p);
+  }
+}
+
+std::vector<ParticleInit> all_particles(const SceneSpec& scene) {
+  return select_particles(scene, [](const Vec3d&) { return true; });
+}
+
+std::vector<ParticleInit> select_particles(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep) {
+  const ParticleStream stream(scene);
+  std::vector<std::vector<ParticleInit>> kept((stream.count() + kChunk - 1) / kChunk);
+  in_chunks(stream, 0, stream.count(), [&](std::size_t c, const std::vector<ParticleInit>& chunk) {
+    for (const ParticleInit& p : chunk)
+      if (keep(p.position)) kept[c].push_back(p);
+  });
+  std::vector<std::size_t> offset(kept.size() + 1, 0);
+  for (std::size_t c = 0; c < kept.size(); ++c) offset[c + 1] = offset[c] + kept[c].size();
+  std::vector<ParticleInit> out(offset.back());
+#pragma omp parallel for schedule(dynamic)
+  for (long c = 0; c < long(kept.size()); ++c) {
+    std::copy(kept[std::size_t(c)].begin(), kept[std::size_t(c)].end(), out.begin() + std::ptrdiff_t(offset[std::size_t(c)]));
+    std::vector<ParticleInit>().swap(kept[std::size_t(c)]);
+  }
+  return out;
+}
+
+void for_each_position_block(const SceneSpec& scene, std::size_t first, std::size_t last,
+                             const std::function<void(const std::vector<Vec3d>&)>& use) {
+  // Blocks of many chunks, so every thread has work while one block is bounded.
+  constexpr std::size_t kBlock = 64 * kChunk;
+  const ParticleStream stream(scene);
+  last = std::min(last, stream.count());
+  std::vector<Vec3d> x;
+  for (std::size_t a = first; a < last; a += kBlock) {
+    const std::size_t b = std::min(last, a + kBlock);
+    x.resize(b - a);
+    in_chunks(stream, a, b, [&](std::size_t c, const std::vector<ParticleInit>& chunk) {
+      for (std::size_t k = 0; k < chunk.size(); ++k) x[c * kChunk + k] = chunk[k].position;
+    });
+    use(x);
+  }
+}
+
+std::size_t find_first(const SceneSpec& scene, std::size_t first, std::size_t last,
+                       const std::function<bool(const ParticleInit&)>& bad) {
+  const ParticleStream stream(scene);
+  last = std::min(last, stream.count());
+  std::vector<std::size_t> found((last - first + kChunk - 1) / kChunk, last);
+  in_chunks(stream, first, last, [&](std::size_t c, const std::vector<ParticleInit>& chunk) {
+    for (std::size_t k = 0; k < chunk.size(); ++k)
+      if (bad(chunk[k])) {
+        found[c] = first + c * kChunk + k;
+        return;
+      }
+  });
+  for (std::size_t f : found)
+    if (f < last) return f;
+  return last;
+}
+
+}  // namespace gs

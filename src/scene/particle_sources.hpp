@@ -1,0 +1,75 @@
+#pragma once
+// The scene's particles generated where they are needed, never all at once:
+// any range of them in id order, on every thread, and the few numbers the
+// setup needs from all of them (count, radii) without generating any.
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "scene/scene.hpp"
+
+namespace gs {
+
+// The particle of any site of a lattice, on its own: sites are independent,
+// so any range of them can be made by any thread or rank, in any order, with
+// the same bits as the serial generator.
+class LatticeSites {
+ public:
+  LatticeSites(const LatticeSpec& spec, ParticleId first_id);
+  std::size_t count() const { return nx_ * ny_ * nz_; }
+  ParticleInit at(std::size_t site) const;
+
+ private:
+  LatticeSpec spec_;
+  ParticleId first_id_;
+  std::size_t nx_, ny_, nz_;
+};
+
+// The scene's particles as one sequence in id order: the explicit particles
+// (SceneSpec::particles, ascending ids) merged with the lattices by id.
+class ParticleStream {
+ public:
+  explicit ParticleStream(const SceneSpec& scene);
+  std::size_t count() const { return count_; }
+  // Appends particles [first, last) of the sequence to out.
+  void generate(std::size_t first, std::size_t last, std::vector<ParticleInit>& out) const;
+
+ private:
+  // A run of explicit particles (lattice null: particles[offset ...]) or a whole lattice.
+  struct Segment {
+    const LatticeSource* lattice;
+    std::size_t offset, begin, count;  // begin: index of its first particle in the sequence
+  };
+  const SceneSpec& scene_;
+  std::vector<Segment> segments_;
+  std::vector<LatticeSites> sites_;  // one per lattice
+  std::size_t count_ = 0;
+};
+
+std::size_t particle_count(const SceneSpec& scene);
+// Calls visit(material, radius) for every explicit particle and once per
+// lattice: every radius the scene has, without generating a lattice.
+void for_each_radius(const SceneSpec& scene, const std::function<void(int material, double radius)>& visit);
+double largest_radius(const SceneSpec& scene);   // 0 without particles
+double smallest_radius(const SceneSpec& scene);  // infinity without particles
+
+// Every particle in id order, one after the other (serial; for checks that
+// need the order, and small scenes).
+void for_each_particle(const SceneSpec& scene, const std::function<void(const ParticleInit&)>& visit);
+std::vector<ParticleInit> all_particles(const SceneSpec& scene);
+
+// The particles whose position `keep` accepts, in id order, generated in
+// chunks on every thread (keep must be safe to call from several threads).
+std::vector<ParticleInit> select_particles(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep);
+
+// Positions of particles [first, last) of the sequence, in blocks generated
+// on every thread and handed to `use` one after the other, in order.
+void for_each_position_block(const SceneSpec& scene, std::size_t first, std::size_t last,
+                             const std::function<void(const std::vector<Vec3d>&)>& use);
+
+// Index in the sequence of the first particle of [first, last) that `bad`
+// accepts, or `last`; searched on every thread.
+std::size_t find_first(const SceneSpec& scene, std::size_t first, std::size_t last,
+                       const std::function<bool(const ParticleInit&)>& bad);
+
+}  // namespace gs
