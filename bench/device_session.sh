@@ -5,7 +5,9 @@
 #   [TESTS_REGEX=re] [TESTS_EXCLUDE=re] [BUILD_TARGET=t] bench/device_session.sh [all|tests|bench|baseline|refactor|effects|mixer|mixprofile|mixacc|accuracy|output|scaling][,...]
 # BUILD_TARGET builds only that target (e.g. settle_bench) instead of everything.
 # METIS and yaml-cpp may be carried as unpacked Debian packages in carry/root
-# (see docs/PERFORMANCE.md) when the machine lacks them.
+# when the machine lacks them: mkdir -p carry && cd carry && apt-get download
+# libmetis5 libmetis-dev libyaml-cpp0.7 libyaml-cpp-dev && for f in *.deb; do
+# dpkg -x $f root; done
 set -uo pipefail
 what=${1:-all}
 root=$(pwd)

@@ -26,16 +26,6 @@ SceneSpec without_particles(const SceneSpec& scene) {
   return settings;
 }
 
-// One store field from the particles, built on every thread; the host copy
-// lives only while it is uploaded, so setup holds one field at a time.
-template <class T, class Value>
-void upload_field(DeviceArray<T>& field, std::size_t n, Value&& value) {
-  std::vector<T> host(n);
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < long(n); ++i) host[std::size_t(i)] = value(std::size_t(i));
-  field.from_host(host);
-}
-
 template <class T>
 std::vector<T> permuted(const std::vector<T>& v, const std::vector<std::size_t>& order) {
   std::vector<T> out(order.size());
@@ -51,12 +41,18 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
   move_walls(0.0);
   pose_meshes(0.0);
   // Each rank generates only the particles it owns (lattices site by site).
+  const auto t0 = Clock::now();
   RankExchange* split = exchange_.get();
-  upload(select_particles(scene, [split](const Vec3d& x) { return !split || split->owns(x); }));
+  upload(scene, [split](const Vec3d& x) { return !split || split->owns(x); });
   if (exchange_) exchange_->refresh_ghosts(store_, kernels_->movement());
+  kernels_->synchronize();
+  setup_timings_.particles = seconds_since(t0);
   // Forces at t = 0 for the first half kick.
+  const auto t1 = Clock::now();
   rebuild_neighbours();
   kernels_->forces().compute(store_, 0.0, 0);
+  kernels_->synchronize();
+  setup_timings_.first_forces = seconds_since(t1);
 }
 
 Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::shared_ptr<RankExchange> exchange,
@@ -131,27 +127,36 @@ void Simulation::restore(const RestartState& r) {
   kernels_->movement().set_forces(store_, force, torque);
 }
 
-void Simulation::upload(const std::vector<ParticleInit>& particles) {
-  const std::size_t n = particles.size();
+// The owned particles go straight from the generators into host copies of
+// the store's fields (filled on every thread, no list of particles between),
+// which live only until they are uploaded.
+void Simulation::upload(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep) {
+  ParticleRecords host;
   const std::vector<MaterialSpec>& materials = scene_.materials;
-  auto mass = [&](std::size_t i) {
-    return sphere_mass(particles[i].radius, materials[std::size_t(particles[i].material)].density);
-  };
   // fp32 state: positions and velocities start on the fp32 grid they live on.
   const bool fp32 = fp32_state(scene_.precision);
   auto state = [fp32](const Vec3d& v) { return fp32 ? on_fp32_grid(v) : v; };
-  upload_field(store_.id, n, [&](std::size_t i) { return particles[i].id; });
-  upload_field(store_.material, n, [&](std::size_t i) { return std::uint8_t(particles[i].material); });
-  upload_field(store_.marker, n, [&](std::size_t i) { return particles[i].marker; });
-  upload_field(store_.radius, n, [&](std::size_t i) { return float(particles[i].radius); });
-  upload_field(store_.mass, n, [&](std::size_t i) { return float(mass(i)); });
-  upload_field(store_.inertia, n, [&](std::size_t i) {
-    return float(0.4 * mass(i) * particles[i].radius * particles[i].radius);
+  for_each_selected(
+      scene, keep,
+      [&](std::size_t n) { for_each_particle_field(host, [n](const char*, auto& field) { field.resize(n); }); },
+      [&](std::size_t k, const ParticleInit& p) {
+        const double m = sphere_mass(p.radius, materials[std::size_t(p.material)].density);
+        host.id[k] = p.id;
+        host.material[k] = std::uint8_t(p.material);
+        host.marker[k] = p.marker;
+        host.radius[k] = float(p.radius);
+        host.mass[k] = float(m);
+        host.inertia[k] = float(0.4 * m * p.radius * p.radius);
+        host.position[k] = state(p.position);
+        host.velocity[k] = state(p.velocity);
+        host.angular_velocity[k] = state(p.angular_velocity);
+        host.orientation[k] = Quaternion{1, 0, 0, 0};
+      });
+  const std::size_t n = host.id.size();
+  for_each_particle_field(store_, host, [](const char*, auto& field, auto& from) {
+    field.from_host(from);
+    std::decay_t<decltype(from)>().swap(from);  // one host copy less to hold
   });
-  upload_field(store_.position, n, [&](std::size_t i) { return state(particles[i].position); });
-  upload_field(store_.velocity, n, [&](std::size_t i) { return state(particles[i].velocity); });
-  upload_field(store_.angular_velocity, n, [&](std::size_t i) { return state(particles[i].angular_velocity); });
-  upload_field(store_.orientation, n, [](std::size_t) { return Quaternion{1, 0, 0, 0}; });
   store_.n_owned = Index(n);
   store_.n_ghost = 0;
   ++store_.revision;

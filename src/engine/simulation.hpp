@@ -73,10 +73,16 @@ class Simulation {
   // Wall time in run() per phase: the total is measured, its split over the
   // phases is that of the timed steps (every kTimedEvery-th, see phase_seconds).
   StepTimings timings() const;
+  // Wall time of the set-up of a new run (zero after a restart).
+  struct SetupTimings {
+    double particles = 0;     // generating and uploading the owned particles, the first ghosts
+    double first_forces = 0;  // the first neighbour search and force computation
+  };
+  const SetupTimings& setup_timings() const { return setup_timings_; }
 
  private:
   void set_up(const SceneSpec& scene);
-  void upload(const std::vector<ParticleInit>& particles);
+  void upload(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep);
   void restore(const RestartState& restart);
   void move_walls(double t);
   void pose_meshes(double t);
@@ -101,6 +107,7 @@ class Simulation {
   long long last_reorder_ = 0;  // step of the last memory re-sort
   StepTimings timings_;  // sampled: the timed steps' phases
   double run_seconds_ = 0;  // all of run(), measured
+  SetupTimings setup_timings_;
 };
 
 }  // namespace gs

@@ -341,8 +341,9 @@ int run_scene(const RunRequest& request, Transport& transport) {
   out.log("grainstorm %s: %s, %lld particles, backend %s, %d rank%s, dt = %.4g s (contact time %.4g s), steps %lld to %lld\n",
           GS_VERSION, a.scene.c_str(), particles, backend_name(a.backend), transport.size(),
           transport.size() > 1 ? "s" : "", scene.time_step, scene.contact_time, sim->step_count(), total);
-  out.log("set up in %.2f s (scene %.2f s, decomposition %.2f s, particles and first forces %.2f s)\n",
-          setup_seconds, load_seconds, split_seconds, setup_seconds - load_seconds - split_seconds);
+  const Simulation::SetupTimings& st = sim->setup_timings();
+  out.log("set up in %.2f s (scene %.2f s, decomposition %.2f s, particles %.2f s, first forces %.2f s)\n",
+          setup_seconds, load_seconds, split_seconds, st.particles, st.first_forces);
   if (!a.restart.empty()) {
     out.resume(sim->step_count());
     out.log("restarted from %s at step %lld\n", a.restart.c_str(), sim->step_count());

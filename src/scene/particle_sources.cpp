@@ -146,6 +146,23 @@ std::vector<ParticleInit> select_particles(const SceneSpec& scene, const std::fu
   return out;
 }
 
+void for_each_selected(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep,
+                       const std::function<void(std::size_t)>& size,
+                       const std::function<void(std::size_t, const ParticleInit&)>& write) {
+  const ParticleStream stream(scene);
+  std::vector<std::size_t> offset((stream.count() + kChunk - 1) / kChunk + 1, 0);
+  in_chunks(stream, 0, stream.count(), [&](std::size_t c, const std::vector<ParticleInit>& chunk) {
+    for (const ParticleInit& p : chunk) offset[c + 1] += keep(p.position) ? 1 : 0;
+  });
+  for (std::size_t c = 1; c < offset.size(); ++c) offset[c] += offset[c - 1];
+  size(offset.back());
+  in_chunks(stream, 0, stream.count(), [&](std::size_t c, const std::vector<ParticleInit>& chunk) {
+    std::size_t k = offset[c];
+    for (const ParticleInit& p : chunk)
+      if (keep(p.position)) write(k++, p);
+  });
+}
+
 void for_each_position_block(const SceneSpec& scene, std::size_t first, std::size_t last,
                              const std::function<void(const std::vector<Vec3d>&)>& use) {
   // Blocks of many chunks, so every thread has work while one block is bounded.

@@ -62,6 +62,15 @@ std::vector<ParticleInit> all_particles(const SceneSpec& scene);
 // chunks on every thread (keep must be safe to call from several threads).
 std::vector<ParticleInit> select_particles(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep);
 
+// The same without a list of them: the particles `keep` accepts are counted
+// chunk by chunk (one pass, every thread), `size(n)` is told how many there
+// are, then each is handed to `write(k, particle)` with its rank k in id
+// order (a second pass; several threads at once, each k once). Setup fills
+// its arrays this way, so no copy of the particles is ever held.
+void for_each_selected(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep,
+                       const std::function<void(std::size_t n)>& size,
+                       const std::function<void(std::size_t k, const ParticleInit& p)>& write);
+
 // Positions of particles [first, last) of the sequence, in blocks generated
 // on every thread and handed to `use` one after the other, in order.
 void for_each_position_block(const SceneSpec& scene, std::size_t first, std::size_t last,

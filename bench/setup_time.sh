@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Set-up time and peak host memory of a run of a frictional lattice bed of N
+# touching spheres (as bench/scaling_bed.sh builds it, square base, twice as
+# tall as wide; bench/lattice_bed.sh) on R ranks, one step, snapshots of ids only.
+#   bench/setup_time.sh BUILD_DIR N [RANKS=1] [BACKEND=cuda] [OUTDIR=/tmp/setup_time]
+# Prints the run's "set up in" line and each rank's peak resident memory.
+set -euo pipefail
+build=$1 count=$2 ranks=${3:-1} backend=${4:-cuda} out=${5:-/tmp/setup_time}
+mkdir -p "$out"
+py() { python3 -c "print($1)"; }
+side=$(py "round(($count / 2) ** (1/3))")
+layers=$(py "round($count / $side**2)")
+scene=$out/bed_$count.yaml
+"$(dirname "$0")/lattice_bed.sh" "$side" "$layers" "$out/run_$count" id > "$scene"
+mpiexec --allow-run-as-root --oversubscribe -n "$ranks" /usr/bin/time -f "rank peak resident memory %M kB" \
+  "$build/src/grainstorm" run "$scene" --backend "$backend" --steps 1 --overwrite 2>&1 |
+  grep --line-buffered -E "particles,|set up in|^done|peak resident|rror"
