@@ -7,16 +7,13 @@
 
 #include "contact/contact_time.hpp"
 #include "contact/contact_models.hpp"
+#include "core/wall_clock.hpp"
 #include "scene/particle_sources.hpp"
 #include "scene/position_resolution.hpp"
 #include "walls/wall_motion.hpp"
 
 namespace gs {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // The scene without its particles: once a rank's own are in the store, a
 // second copy of the scene's (all of them, on every rank) would be dead weight.

@@ -19,19 +19,13 @@
 #include "comm/rank_agreement.hpp"
 #include "comm/scene_split.hpp"
 #include "comm/device_link.hpp"
+#include "core/wall_clock.hpp"
 #include "engine/simulation.hpp"
 #include "io/fnv1a.hpp"
 #include "io/restart.hpp"
 #include "scene/scene_loader.hpp"
 
 namespace gs {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-}  // namespace
 
 std::string human_bytes(double b) {
   const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB"};
@@ -247,7 +241,7 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
     if ((every > 0 && now % every == 0) || now == total) out.snapshot(sim);
     if (mixing.due(now)) out.mixing(sim);
     const bool wall_due = checkpoint_seconds > 0 &&
-                          std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >= checkpoint_seconds;
+                          seconds_since(last_checkpoint) >= checkpoint_seconds;
     // Every rank must agree before a collective checkpoint or a stop.
     const bool stop = stop_signal.settle();
     const bool due = (checkpoint_every > 0 && now % checkpoint_every == 0) || transport.min(wall_due ? 0 : 1) == 0;
@@ -261,7 +255,7 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
       return 3;
     }
   }
-  const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+  const double wall = seconds_since(t0);
   out.log("done: %lld steps, t = %.6g s, %.3g particle-steps/s\n", total, sim.time(),
           wall > 0 ? double(sim.step_count() - first_step) * double(particles) / wall : 0.0);
   if (exchange) out.log("decomposition at the end: %s\n", exchange->describe().c_str());

@@ -72,17 +72,6 @@ constexpr double kMaxFillFraction = 0.64;
   throw GenerateError(msg.str());
 }
 
-ParticleInit make_particle(const ParticleTemplate& t, std::size_t id, const Vec3d& pos, double r) {
-  ParticleInit p;
-  p.id = ParticleId(id);
-  p.material = t.material;
-  p.radius = r;
-  p.position = pos;
-  p.velocity = t.velocity;
-  p.angular_velocity = t.angular_velocity;
-  p.marker = t.marker;
-  return p;
-}
 
 // The two grids of a fill: exact overlap queries, and a fine bitmap of space
 // no further centre can use, which rejects most doomed trials for one bit.
@@ -126,6 +115,18 @@ bool place(const FillRegion& reg, FillGrids& g, double r, int max_attempts, std:
 constexpr std::size_t kMaxFillCount = 200000000;
 
 }  // namespace
+
+ParticleInit make_particle(const ParticleTemplate& t, std::size_t id, const Vec3d& pos, double r) {
+  ParticleInit p;
+  p.id = ParticleId(id);
+  p.material = t.material;
+  p.radius = r;
+  p.position = pos;
+  p.velocity = t.velocity;
+  p.angular_velocity = t.angular_velocity;
+  p.marker = t.marker;
+  return p;
+}
 
 void check_id_room(std::size_t existing, std::size_t count) {
   if (count > std::size_t(kMaxParticleId) + 1 - std::min(existing, std::size_t(kMaxParticleId) + 1))

@@ -23,6 +23,9 @@ std::size_t lattice_count(const LatticeSpec& spec);
 // Appends the lattice to `out`; ids continue from out.size().
 void generate_lattice(const LatticeSpec& spec, std::vector<ParticleInit>& out);
 
+// Particle `id` of a generated set: the template's properties at `position`.
+ParticleInit make_particle(const ParticleTemplate& t, std::size_t id, const Vec3d& position, double radius);
+
 // GenerateError when `count` more particles after `existing` ones would
 // exceed the particle ids.
 void check_id_room(std::size_t existing, std::size_t count);

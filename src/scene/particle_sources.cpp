@@ -16,16 +16,9 @@ LatticeSites::LatticeSites(const LatticeSpec& spec, ParticleId first_id)
 
 ParticleInit LatticeSites::at(std::size_t site) const {
   const std::size_t i = site % nx_, j = (site / nx_) % ny_, k = site / (nx_ * ny_);
-  ParticleInit p;
-  p.id = ParticleId(first_id_ + site);
-  p.material = spec_.tmpl.material;
-  p.radius = spec_.radius;
   // The serial generator's expression, so the bits are its bits.
-  p.position = spec_.min + spec_.spacing * Vec3d(double(i), double(j), double(k));
-  p.velocity = spec_.tmpl.velocity;
-  p.angular_velocity = spec_.tmpl.angular_velocity;
-  p.marker = spec_.tmpl.marker;
-  return p;
+  const Vec3d position = spec_.min + spec_.spacing * Vec3d(double(i), double(j), double(k));
+  return make_particle(spec_.tmpl, first_id_ + site, position, spec_.radius);
 }
 
 ParticleStream::ParticleStream(const SceneSpec& scene) : scene_(scene) {
@@ -129,20 +122,10 @@ std::vector<ParticleInit> all_particles(const SceneSpec& scene) {
 }
 
 std::vector<ParticleInit> select_particles(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep) {
-  const ParticleStream stream(scene);
-  std::vector<std::vector<ParticleInit>> kept((stream.count() + kChunk - 1) / kChunk);
-  in_chunks(stream, 0, stream.count(), [&](std::size_t c, const std::vector<ParticleInit>& chunk) {
-    for (const ParticleInit& p : chunk)
-      if (keep(p.position)) kept[c].push_back(p);
-  });
-  std::vector<std::size_t> offset(kept.size() + 1, 0);
-  for (std::size_t c = 0; c < kept.size(); ++c) offset[c + 1] = offset[c] + kept[c].size();
-  std::vector<ParticleInit> out(offset.back());
-#pragma omp parallel for schedule(dynamic)
-  for (long c = 0; c < long(kept.size()); ++c) {
-    std::copy(kept[std::size_t(c)].begin(), kept[std::size_t(c)].end(), out.begin() + std::ptrdiff_t(offset[std::size_t(c)]));
-    std::vector<ParticleInit>().swap(kept[std::size_t(c)]);
-  }
+  std::vector<ParticleInit> out;
+  for_each_selected(
+      scene, keep, [&out](std::size_t n) { out.resize(n); },
+      [&out](std::size_t k, const ParticleInit& p) { out[k] = p; });
   return out;
 }
 
