@@ -10,21 +10,14 @@
 namespace gs {
 namespace {
 
-// Each field of a snapshot, visited in one fixed order for packing and unpacking.
+// Each field of a snapshot, visited in one fixed order for packing and
+// unpacking: the particle fields in their declared order, then the forces
+// and the contact counts. An optional field not kept travels empty.
 template <class Snapshot, class F>
 void for_each_field(Snapshot& s, F&& f) {
-  f(s.id);
-  f(s.material);
-  f(s.marker);
-  f(s.radius);
-  f(s.mass);
-  f(s.inertia);
-  f(s.position);
-  f(s.velocity);
-  f(s.angular_velocity);
+  for_each_particle_field(s, [&](const char*, auto& v) { f(v); });
   f(s.force);
   f(s.torque);
-  f(s.orientation);
   f(s.contacts);
 }
 

@@ -19,6 +19,9 @@ int command_check(const std::vector<std::string>& args) {
   std::printf("scene %s is valid\n", args[1].c_str());
   std::printf("particles:      %zu\n", particle_count(scene));
   std::printf("walls:          %zu\n", scene.walls.size());
+  if (scene.periodic_axes != 0)
+    std::printf("periodic:       %s%s%s (one rank)\n", scene.periodic_axes & 1u ? "x" : "", scene.periodic_axes & 2u ? "y" : "",
+                scene.periodic_axes & 4u ? "z" : "");
   std::printf("precision:      %s\n", precision_name(scene.precision));
   std::printf("contact time:   %.6g s\n", scene.contact_time);
   std::printf("time step:      %.6g s (%.4g of the contact time)\n", scene.time_step,

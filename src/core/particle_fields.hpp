@@ -16,6 +16,7 @@
 //     host holds the history in fp64, exact for fp32).
 #include <cstdint>
 
+#include "core/periodic_box.hpp"
 #include "core/types.hpp"
 #include "core/vec3.hpp"
 
@@ -25,20 +26,30 @@ struct Quaternion {
   float w, x, y, z;
 };
 
-// X(name, type): the state of one particle, in the order messages, records
-// and checkpoints hold it. Every field travels with a migrating particle, in
-// ghost messages and in checkpoints.
-#define GS_PARTICLE_FIELDS(X)   \
-  X(id, ParticleId)             \
-  X(material, std::uint8_t)     \
-  X(marker, std::uint8_t)       \
-  X(radius, float)              \
-  X(mass, float)                \
-  X(inertia, float)             \
-  X(position, Vec3d)            \
-  X(velocity, Vec3d)            \
-  X(angular_velocity, Vec3d)    \
-  X(orientation, Quaternion)
+// Fields that only some runs keep (a bit each); a run that does not keep one
+// leaves it empty everywhere (store, records, snapshots, messages,
+// checkpoints), so it costs nothing in memory or traffic.
+enum ParticleField : unsigned {
+  kEveryRun = 0u,     // not optional: every run keeps the field
+  kImageCounts = 1u,  // periodic runs: crossings of each periodic face (core/periodic_box.hpp)
+};
+
+// X(name, type, kept): the state of one particle, in the order messages,
+// records and checkpoints hold it; kept is kEveryRun or the ParticleField bit
+// of a field only some runs keep. Every kept field travels with a migrating
+// particle, in ghost messages and in checkpoints.
+#define GS_PARTICLE_FIELDS(X)              \
+  X(id, ParticleId, kEveryRun)             \
+  X(material, std::uint8_t, kEveryRun)     \
+  X(marker, std::uint8_t, kEveryRun)       \
+  X(radius, float, kEveryRun)              \
+  X(mass, float, kEveryRun)                \
+  X(inertia, float, kEveryRun)             \
+  X(position, Vec3d, kEveryRun)            \
+  X(velocity, Vec3d, kEveryRun)            \
+  X(angular_velocity, Vec3d, kEveryRun)    \
+  X(orientation, Quaternion, kEveryRun)    \
+  X(image, ImageCount, kImageCounts)
 
 // The value of a history field in precision Real.
 template <class Real>
@@ -67,7 +78,7 @@ constexpr unsigned kFormat2HistoryFields = kTangentialSprings | kRollingSprings;
 // f(name, field) for each particle field of `a` (a store, records, a snapshot).
 template <class A, class F>
 void for_each_particle_field(A& a, F&& f) {
-#define GS_VISIT_FIELD(name, type) f(#name, a.name);
+#define GS_VISIT_FIELD(name, type, kept) f(#name, a.name);
   GS_PARTICLE_FIELDS(GS_VISIT_FIELD)
 #undef GS_VISIT_FIELD
 }
@@ -75,7 +86,33 @@ void for_each_particle_field(A& a, F&& f) {
 // f(name, field of a, field of b) for each particle field of a and b.
 template <class A, class B, class F>
 void for_each_particle_field(A& a, B& b, F&& f) {
-#define GS_VISIT_FIELD(name, type) f(#name, a.name, b.name);
+#define GS_VISIT_FIELD(name, type, kept) f(#name, a.name, b.name);
+  GS_PARTICLE_FIELDS(GS_VISIT_FIELD)
+#undef GS_VISIT_FIELD
+}
+
+// The same over the fields a run keeps: every kEveryRun field and the
+// optional ones whose bit is in `kept` (a set of ParticleField bits).
+template <class A, class F>
+void for_each_kept_particle_field(A& a, unsigned kept, F&& f) {
+#define GS_VISIT_FIELD(name, type, bit) \
+  if ((bit) == kEveryRun || (kept & (bit)) != 0) f(#name, a.name);
+  GS_PARTICLE_FIELDS(GS_VISIT_FIELD)
+#undef GS_VISIT_FIELD
+}
+
+template <class A, class B, class F>
+void for_each_kept_particle_field(A& a, B& b, unsigned kept, F&& f) {
+#define GS_VISIT_FIELD(name, type, bit) \
+  if ((bit) == kEveryRun || (kept & (bit)) != 0) f(#name, a.name, b.name);
+  GS_PARTICLE_FIELDS(GS_VISIT_FIELD)
+#undef GS_VISIT_FIELD
+}
+
+// f(name, bit, field) for each particle field of `a`, with its ParticleField bit.
+template <class A, class F>
+void for_each_particle_field_bit(A& a, F&& f) {
+#define GS_VISIT_FIELD(name, type, bit) f(#name, unsigned(bit), a.name);
   GS_PARTICLE_FIELDS(GS_VISIT_FIELD)
 #undef GS_VISIT_FIELD
 }

@@ -22,7 +22,7 @@ struct HostHistory {
 };
 
 struct ParticleRecords {
-#define GS_DECLARE_FIELD(name, type) std::vector<type> name;
+#define GS_DECLARE_FIELD(name, type, kept) std::vector<type> name;
   GS_PARTICLE_FIELDS(GS_DECLARE_FIELD)
 #undef GS_DECLARE_FIELD
   HostHistory history;  // empty (slots = 0) when not carried

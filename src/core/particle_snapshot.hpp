@@ -13,7 +13,7 @@ namespace gs {
 struct ParticleSnapshot {
   double time = 0;
   long long step = 0;
-#define GS_DECLARE_FIELD(name, type) std::vector<type> name;
+#define GS_DECLARE_FIELD(name, type, kept) std::vector<type> name;
   GS_PARTICLE_FIELDS(GS_DECLARE_FIELD)
 #undef GS_DECLARE_FIELD
   std::vector<Vec3d> force, torque;

@@ -82,7 +82,7 @@ class ForceComputer final : public ForceComputation {
   void launch(ParticleStore& s, const Candidates& candidates, double dt, long long step) {
     ForceKernel<Real, Model, Effects, Candidates> k{s.id.data(), s.material.data(), s.radius.data(), s.mass.data(),
                                                     s.position.data(), s.velocity.data(),
-                                                    s.angular_velocity.data(), candidates,
+                                                    s.angular_velocity.data(), candidates, neighbours_.box(),
                                                     PairTable<Real, Model>{pairs_.data(), n_materials_}, walls_.data(),
                                                     wall_screens_.data(), n_walls_, meshes_.view(), meshes_.loads(),
                                                     slot_table(), st_.forces.force.data(),

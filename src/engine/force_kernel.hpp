@@ -50,6 +50,7 @@ struct ForceKernel {
   const Vec3d* velocity;
   const Vec3d* angular_velocity;
   Candidates candidates;  // contact partners of a particle, in canonical order
+  PeriodicBox box;        // separations to the nearest image on the axes that wrap
   // Interactions
   PairTable<Real, Model> pairs;
   const Wall* walls;
@@ -171,7 +172,7 @@ struct ForceKernel {
 
   GS_HD GS_INLINE void add_particle_contact(Index i, Index j, const Vec3d& xi, ContactLoad<Real>& total,
                                   unsigned& touched) const {
-    const Vec3d d = xi - position[j];
+    const Vec3d d = box.separation(xi, position[j]);
     const double reach = double(radius[i]) + double(radius[j]);
     const double distance2 = norm2(d);
     if (distance2 >= reach * reach) return;

@@ -12,7 +12,8 @@ class Integrator final : public Integration {
   explicit Integrator(StepState<Real>& state) : st_(state) {}
 
   void kick_drift(ParticleStore& s, const IntegrationParams& p) override {
-    Exec::parallel_for(s.n_owned, KickDrift<Real>{half_kick(s, p), s.position.data(), s.orientation.data(),
+    ImageCount* image = (s.fields_kept & kImageCounts) != 0 ? s.image.data() : nullptr;
+    Exec::parallel_for(s.n_owned, KickDrift<Real>{half_kick(s, p), s.position.data(), s.orientation.data(), image,
                                                   s.id.data(), p, st_.fault.data()});
   }
   void kick(ParticleStore& s, const IntegrationParams& p) override { Exec::parallel_for(s.n_owned, half_kick(s, p)); }

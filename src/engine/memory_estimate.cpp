@@ -13,7 +13,9 @@ namespace gs {
 MemoryEstimate estimate_memory(const SceneSpec& scene) {
   const double real = fp32_forces(scene.precision) ? 4 : 8;
   double per = 0;
-#define GS_ADD_FIELD(name, type) per += sizeof(type);
+  const unsigned fields = particle_fields_kept(scene);
+#define GS_ADD_FIELD(name, type, bit) \
+  if ((bit) == kEveryRun || (fields & (bit)) != 0) per += sizeof(type);
   GS_PARTICLE_FIELDS(GS_ADD_FIELD)
 #undef GS_ADD_FIELD
   per += 3 * real;                                        // force
@@ -33,7 +35,7 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   MemoryEstimate m;
   m.bytes_per_particle = per;
   if (r > 0) {
-    const CellGrid g = make_cell_grid(scene.domain_min, scene.domain_max, 2 * r);
+    const CellGrid g = make_cell_grid(scene.domain_min, scene.domain_max, 2 * r, periodic_box(scene));
     m.cells = g.cell_count();
     m.cell_bytes = 2.0 * 4 * double(m.cells);
   }

@@ -45,6 +45,8 @@ class NeighbourFinder final : public NeighbourSearch {
   // Whether the Verlet list describes the store as it is now.
   bool list_valid(const ParticleStore& s) const { return verlet_.valid && built_at_ == s.revision; }
   ListCandidates list_candidates() const { return verlet_.candidates(); }
+  // The periodic box of the grid the cell list was built on.
+  const PeriodicBox& box() const { return cells_.grid.box; }
 
  private:
   CellList cells_;

@@ -19,6 +19,7 @@ struct MessageHeader {
   std::int32_t slots = 0;      // history slots per particle; 0: no history carried
   std::int32_t real_bytes = 0;  // bytes of the history's reals (sizeof(Real)); 0: no history fields
   std::uint32_t fields = 0;    // the history fields carried (HistoryField bits)
+  std::uint32_t particle_fields = 0;  // the optional particle fields carried (ParticleField bits)
   std::uint32_t check = 0;     // kMessageCheck: a header that is not one is refused
 };
 constexpr std::uint32_t kMessageCheck = 0x67734d32u;  // "gsM2"
@@ -44,7 +45,8 @@ struct MessageLayout {
       return here;
     };
     int k = 0;
-#define GS_LAY_OUT_FIELD(name, type) particle[k++] = field(sizeof(type));
+#define GS_LAY_OUT_FIELD(name, type, bit) \
+  particle[k++] = field((bit) == kEveryRun || (h.particle_fields & (bit)) != 0 ? sizeof(type) : 0);
     GS_PARTICLE_FIELDS(GS_LAY_OUT_FIELD)
 #undef GS_LAY_OUT_FIELD
     partner = field(slots * sizeof(ParticleId));

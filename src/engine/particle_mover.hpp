@@ -94,8 +94,8 @@ class ParticleMover final : public ParticleMovement {
   }
 
  private:
-  // What a message of `count` particles carries from this run.
-  MessageHeader message_header(Index count, bool with_history) const;
+  // What a message of `count` particles of store s carries from this run.
+  MessageHeader message_header(const ParticleStore& s, Index count, bool with_history) const;
   void grow_history(std::size_t capacity);
   void keep_in_order(ParticleStore& s, const Index* order, Index n);
   static std::vector<Vec3<Real>> narrowed(const std::vector<Vec3d>& v, Index n) {

@@ -58,7 +58,7 @@ template <class Exec, class Real>
 void ParticleMover<Exec, Real>::keep_in_order(ParticleStore& s, const Index* order, Index n) {
   DeviceArray<unsigned char>& tmp = st_.staging;
   ++s.revision;
-  for_each_particle_field(s, [&](const char*, auto& a) { gather_in_place<Exec>(a, order, n, tmp); });
+  for_each_kept_particle_field(s, s.fields_kept, [&](const char*, auto& a) { gather_in_place<Exec>(a, order, n, tmp); });
   gather_in_place<Exec>(st_.forces.force, order, n, tmp);
   if (st_.torque) gather_in_place<Exec>(st_.forces.torque, order, n, tmp);
   if (st_.keeps_history()) {

@@ -97,10 +97,12 @@ void append_from_host(DeviceArray<T>& a, const std::vector<T>& h, std::size_t fi
 }
 
 template <class Exec, class Real>
-MessageHeader ParticleMover<Exec, Real>::message_header(Index count, bool with_history) const {
+MessageHeader ParticleMover<Exec, Real>::message_header(const ParticleStore& s, Index count,
+                                                        bool with_history) const {
   MessageHeader h;
   h.count = std::uint64_t(count);
   h.check = kMessageCheck;
+  h.particle_fields = s.fields_kept;
   if (with_history && st_.keeps_history()) {
     h.slots = st_.history.slots;
     h.real_bytes = std::int32_t(sizeof(Real));
@@ -113,12 +115,15 @@ template <class Exec, class Real>
 MessageHeader ParticleMover<Exec, Real>::pack(const ParticleStore& s, const DeviceArray<Index>& w,
                                                                 bool with_history,
                                                                 DeviceArray<unsigned char>& out) const {
-  const MessageHeader h = message_header(Index(w.size()), with_history);
+  const MessageHeader h = message_header(s, Index(w.size()), with_history);
   const MessageLayout at(h);
   out.resize(at.bytes);
   unsigned char* b = out.data();
   int k = 0;
-  for_each_particle_field(s, [&](const char*, const auto& a) { gather_into<Exec>(a, w, b + at.particle[k++]); });
+  for_each_particle_field(s, [&](const char*, const auto& a) {
+    if (a.size() != 0) gather_into<Exec>(a, w, b + at.particle[k]);  // an optional field not kept is empty
+    ++k;
+  });
   if (h.slots == 0) return h;
   gather_history_into<Exec>(st_.history.partner, w, h.slots, st_.history.strides, b + at.partner);
   k = 0;
@@ -135,7 +140,10 @@ void ParticleMover<Exec, Real>::unpack(ParticleStore& s, const MessageHeader& h,
   if (!as_ghosts && s.n_ghost != 0) throw std::logic_error("owned particles can only be appended before ghosts");
   if (h.check != kMessageCheck) throw std::runtime_error("a particle message from another rank is corrupt");
   // Owned arrivals must carry exactly this run's history; ghosts carry none.
-  const MessageHeader want = message_header(Index(h.count), !as_ghosts);
+  const MessageHeader want = message_header(s, Index(h.count), !as_ghosts);
+  if (h.particle_fields != want.particle_fields)
+    throw std::runtime_error("arriving particles carry the optional fields " + std::to_string(h.particle_fields) +
+                             ", this run keeps " + std::to_string(want.particle_fields));
   if (h.slots != want.slots || h.real_bytes != want.real_bytes || h.fields != want.fields)
     throw std::runtime_error("arriving particles carry " + std::to_string(h.slots) + " history slots of fields " +
                              std::to_string(h.fields) + " in " + std::to_string(h.real_bytes) +
@@ -146,7 +154,10 @@ void ParticleMover<Exec, Real>::unpack(ParticleStore& s, const MessageHeader& h,
   const Index m = Index(h.count);
   s.resize_arrays(first + std::size_t(m));
   int k = 0;
-  for_each_particle_field(s, [&](const char*, auto& a) { scatter_from<Exec>(payload + at.particle[k++], a, first, m); });
+  for_each_particle_field(s, [&](const char*, auto& a) {
+    if (a.size() != 0) scatter_from<Exec>(payload + at.particle[k], a, first, m);
+    ++k;
+  });
   if (as_ghosts) s.n_ghost += m;
   else s.n_owned += m;
   reserve(s.size());
@@ -177,8 +188,12 @@ void ParticleMover<Exec, Real>::append(ParticleStore& s, const ParticleRecords& 
   if (!as_ghosts && s.n_ghost != 0) throw std::logic_error("owned particles can only be appended before ghosts");
   const std::size_t first = std::size_t(s.size());
   ++s.revision;
-  for_each_particle_field(s, r, [&](const char*, auto& a, const auto& from) { append_from_host(a, from, first); });
   const Index m = Index(r.size());
+  for_each_kept_particle_field(s, r, s.fields_kept, [&](const char* name, auto& a, const auto& from) {
+    if (from.size() != std::size_t(m))
+      throw std::invalid_argument(std::string("arriving particles lack the field ") + name + " this run keeps");
+    append_from_host(a, from, first);
+  });
   if (as_ghosts) s.n_ghost += m;
   else s.n_owned += m;
   reserve(s.size());

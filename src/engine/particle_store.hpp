@@ -39,8 +39,10 @@ struct ParticleStore {
   // Raised whenever particles are added, removed or reordered: a neighbour
   // list built at an older revision no longer describes the store.
   std::uint64_t revision = 0;
+  // The optional fields this run keeps (ParticleField bits); the others stay empty.
+  unsigned fields_kept = 0;
 
-#define GS_DECLARE_FIELD(name, type) DeviceArray<type> name;
+#define GS_DECLARE_FIELD(name, type, kept) DeviceArray<type> name;
   GS_PARTICLE_FIELDS(GS_DECLARE_FIELD)
 #undef GS_DECLARE_FIELD
 
@@ -53,7 +55,7 @@ struct ParticleStore {
   }
   // Sets the length of every array (contents up to min(old, n) are kept).
   void resize_arrays(std::size_t n) {
-    for_each_particle_field(*this, [n](const char*, auto& a) { a.resize(n); });
+    for_each_kept_particle_field(*this, fields_kept, [n](const char*, auto& a) { a.resize(n); });
     ++revision;
   }
   void drop_ghosts() {

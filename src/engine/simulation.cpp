@@ -69,11 +69,12 @@ void Simulation::set_up(const SceneSpec& scene) {
                                 std::to_string(options_.verlet_skin));
   const Backend b = options_.backend;
   store_.place_on(b);
+  store_.fields_kept = particle_fields_kept(scene);
   kernels_ = make_step_kernels({b, scene.precision, scene.model, scene.effects},
                                {scene.materials, scene.pairs, scene.contact_slots});
   const double diameter = 2.0 * largest_radius(scene);
   skin_ = kernels_->neighbours().uses_verlet_list() ? options_.verlet_skin * diameter : 0.0;
-  grid_ = make_cell_grid(scene.domain_min, scene.domain_max, diameter + skin_);
+  grid_ = make_cell_grid(scene.domain_min, scene.domain_max, diameter + skin_, periodic_box(scene));
   walls_ = scene.walls;
   for (const Wall& w : walls_) walls_move_ = walls_move_ || norm2(w.velocity) > 0 || norm2(w.angular_velocity) > 0;
   meshes_ = scene.meshes;
@@ -108,9 +109,12 @@ void Simulation::restore(const RestartState& r) {
   auto take_rows = [&](const auto& from, auto& to, std::size_t i) {
     for (std::size_t s = 0; s < slots && !from.empty(); ++s) to.push_back(from[i * slots + s]);
   };
+  // A checkpoint of a run that kept no image counts starts them at zero.
   for (Index k : mine) {
     const std::size_t i = std::size_t(k);
-    for_each_particle_field(part, r.particles, [i](const char*, auto& to, const auto& from) { to.push_back(from[i]); });
+    for_each_kept_particle_field(part, r.particles, store_.fields_kept, [i](const char*, auto& to, const auto& from) {
+      to.push_back(from.empty() ? typename std::decay_t<decltype(from)>::value_type{} : from[i]);
+    });
     force.push_back(r.force[i]);
     torque.push_back(r.torque[i]);
     take_rows(h.partner, part.history.partner, i);
@@ -135,7 +139,9 @@ void Simulation::upload(const SceneSpec& scene, const std::function<bool(const V
   auto state = [fp32](const Vec3d& v) { return fp32 ? on_fp32_grid(v) : v; };
   for_each_selected(
       scene, keep,
-      [&](std::size_t n) { for_each_particle_field(host, [n](const char*, auto& field) { field.resize(n); }); },
+      [&](std::size_t n) {
+        for_each_kept_particle_field(host, store_.fields_kept, [n](const char*, auto& field) { field.resize(n); });
+      },
       [&](std::size_t k, const ParticleInit& p) {
         const double m = sphere_mass(p.radius, materials[std::size_t(p.material)].density);
         host.id[k] = p.id;
@@ -202,7 +208,7 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
   const auto start = Clock::now();
   const double dt = scene_.time_step;
   IntegrationParams p{dt, scene_.gravity, scene_.domain_min, scene_.domain_max, 0.5 * grid_.cell_size, 0,
-                      fp32_state(scene_.precision)};
+                      fp32_state(scene_.precision), periodic_box(scene_)};
   for (long long s = 0; s < steps; ++s) {
     // A timed step starts with an idle device, so it is charged only its own work.
     if (step_ % kTimedEvery == 0) kernels_->synchronize();
@@ -298,7 +304,7 @@ ParticleSnapshot Simulation::snapshot() const {
   ParticleSnapshot s;
   s.time = time_;
   s.step = step_;
-  for_each_particle_field(s, store_, [&](const char*, auto& to, const auto& from) {
+  for_each_kept_particle_field(s, store_, store_.fields_kept, [&](const char*, auto& to, const auto& from) {
     to = permuted(owned(from.to_host()), order);
   });
   s.force = permuted(kernels_->movement().forces(store_), order);

@@ -8,6 +8,7 @@
 
 #include "core/fault.hpp"
 #include "core/particle_fields.hpp"
+#include "core/periodic_box.hpp"
 
 namespace gs {
 
@@ -18,6 +19,7 @@ struct IntegrationParams {
   double max_displacement;  // per step; half a cell
   long long step;
   bool fp32_state;  // precision fp32_full: the state is kept on the fp32 grid
+  PeriodicBox box;  // the axes that wrap: a particle crossing their faces comes back at the other
 };
 
 // The nearest fp32 values: what a code that stores the state in fp32 keeps.
@@ -57,12 +59,15 @@ struct HalfKick {
 };
 
 // Half kick, then drift of positions and orientation over a whole step, and
-// the checks that stop a run cleanly instead of letting it blow up.
+// the checks that stop a run cleanly instead of letting it blow up. On a
+// periodic axis a particle that crossed a face is wrapped back into the
+// domain and its image count changes by one.
 template <class Real>
 struct KickDrift {
   HalfKick<Real> kick;
   Vec3d* position;
   Quaternion* orientation;
+  ImageCount* image;  // null unless the run is periodic
   const ParticleId* id;
   IntegrationParams p;
   Fault* fault;
@@ -73,17 +78,26 @@ struct KickDrift {
     const Vec3d step = v * p.dt;
     Vec3d& x = position[i];
     x += step;
+    if (image) p.box.wrap(x, image[i]);
     if (p.fp32_state) x = on_fp32_grid(x);
     advance_orientation(orientation[i], kick.angular_velocity[i], p.dt);
     if (!(std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(v.x) &&
           std::isfinite(v.y) && std::isfinite(v.z))) {
       report_fault(fault, kFaultNotFinite, id[i], p.step);
-    } else if (x.x < p.domain_lo.x || x.y < p.domain_lo.y || x.z < p.domain_lo.z || x.x > p.domain_hi.x ||
-               x.y > p.domain_hi.y || x.z > p.domain_hi.z) {
+    } else if (outside_on_axis(x.x, 0) || outside_on_axis(x.y, 1) || outside_on_axis(x.z, 2)) {
       report_fault(fault, kFaultLeftDomain, id[i], p.step);
     } else if (norm2(step) > p.max_displacement * p.max_displacement) {
       report_fault(fault, kFaultTooFast, id[i], p.step);
     }
+  }
+
+ private:
+  // Outside the domain on a wall-bounded axis (a periodic one wraps instead).
+  GS_HD bool outside_on_axis(double x, int axis) const {
+    if (p.box.wraps(axis)) return false;
+    const double lo = axis == 0 ? p.domain_lo.x : axis == 1 ? p.domain_lo.y : p.domain_lo.z;
+    const double hi = axis == 0 ? p.domain_hi.x : axis == 1 ? p.domain_hi.y : p.domain_hi.z;
+    return x < lo || x > hi;
   }
 };
 

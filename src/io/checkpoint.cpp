@@ -19,7 +19,10 @@ void require_length(std::size_t actual, std::size_t expected, const char* field,
 void validate(const Checkpoint& c, const std::string& path) {
   const ParticleSnapshot& p = c.particles;
   const std::size_t n = p.size();
-  for_each_particle_field(p, [&](const char* name, const auto& field) { require_length(field.size(), n, name, path); });
+  // An optional field (ParticleField bit) is empty when the run does not keep it.
+  for_each_particle_field_bit(p, [&](const char* name, unsigned bit, const auto& field) {
+    if (bit == kEveryRun || !field.empty()) require_length(field.size(), n, name, path);
+  });
   require_length(p.force.size(), n, "force", path);
   require_length(p.torque.size(), n, "torque", path);
   const HostHistory& h = c.history;
@@ -36,8 +39,8 @@ void write_particles(const h5::File& f, const ParticleSnapshot& p) {
   h5::create_group(f, "particles");
   h5::write_attribute(f, "particles", "time", p.time);
   h5::write_attribute(f, "particles", "step", std::int64_t(p.step));
-  for_each_particle_field(p, [&](const char* name, const auto& field) {
-    h5::write_field(f, std::string("particles/") + name, field);
+  for_each_particle_field_bit(p, [&](const char* name, unsigned bit, const auto& field) {
+    if (bit == kEveryRun || !field.empty()) h5::write_field(f, std::string("particles/") + name, field);
   });
   h5::write_vec3(f, "particles/force", p.force);
   h5::write_vec3(f, "particles/torque", p.torque);

@@ -56,8 +56,10 @@ ParticleSnapshot read_particles(const h5::File& f, hsize_t n) {
   ParticleSnapshot p;
   p.time = h5::read_attribute<double>(f, "particles", "time");
   p.step = h5::read_attribute<std::int64_t>(f, "particles", "step");
-  for_each_particle_field(p, [&](const char* name, auto& field) {
-    h5::read_field(f, std::string("particles/") + name, n, field);
+  // An optional field is absent when the run did not keep it.
+  for_each_particle_field_bit(p, [&](const char* name, unsigned bit, auto& field) {
+    const std::string path = std::string("particles/") + name;
+    if (bit == kEveryRun || h5::exists(f, path)) h5::read_field(f, path, n, field);
   });
   p.force = h5::read_vec3(f, "particles/force", n);
   p.torque = h5::read_vec3(f, "particles/torque", n);

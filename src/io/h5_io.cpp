@@ -103,6 +103,11 @@ void write_quaternions(const File& f, const std::string& path, const std::vector
   write_array(f, path, reinterpret_cast<const float*>(q.data()), {hsize_t(q.size()), 4});
 }
 
+void write_image_counts(const File& f, const std::string& path, const std::vector<ImageCount>& n) {
+  static_assert(sizeof(ImageCount) == 3 * sizeof(std::int32_t), "ImageCount must be three packed int32");
+  write_array(f, path, reinterpret_cast<const std::int32_t*>(n.data()), {hsize_t(n.size()), 3});
+}
+
 std::vector<hsize_t> dims_of(const File& f, const std::string& path) {
   Handle set = open_dataset(f, path);
   Handle space(GS_H5_CHECK(H5Dget_space(set.get()), where(f, path)), H5Sclose);
@@ -143,6 +148,13 @@ std::vector<Quaternion> read_quaternions(const File& f, const std::string& path,
   std::vector<Quaternion> q(n);
   read_raw(f, path, H5T_NATIVE_FLOAT, H5T_IEEE_F32LE, q.data(), {n, 4});
   return q;
+}
+
+std::vector<ImageCount> read_image_counts(const File& f, const std::string& path, hsize_t n) {
+  require_shape(f, path, {n, 3});
+  std::vector<ImageCount> v(n);
+  read_raw(f, path, H5T_NATIVE_INT32, H5T_STD_I32LE, v.data(), {n, 3});
+  return v;
 }
 
 void write_attribute_raw(const File& f, const std::string& object, const std::string& name, hid_t memory_type,

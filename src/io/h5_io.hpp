@@ -89,6 +89,7 @@ void write_vector(const File& f, const std::string& path, const std::vector<T>& 
 }
 void write_vec3(const File& f, const std::string& path, const std::vector<Vec3d>& v);             // (N, 3)
 void write_quaternions(const File& f, const std::string& path, const std::vector<Quaternion>& q);  // (N, 4) w x y z
+void write_image_counts(const File& f, const std::string& path, const std::vector<ImageCount>& n);  // (N, 3) int32
 // One per-particle or per-contact field, in the shape its type has (N), (N, 3) or (N, 4).
 template <class T>
 void write_field(const File& f, const std::string& path, const std::vector<T>& v) {
@@ -97,6 +98,9 @@ void write_field(const File& f, const std::string& path, const std::vector<T>& v
 inline void write_field(const File& f, const std::string& path, const std::vector<Vec3d>& v) { write_vec3(f, path, v); }
 inline void write_field(const File& f, const std::string& path, const std::vector<Quaternion>& v) {
   write_quaternions(f, path, v);
+}
+inline void write_field(const File& f, const std::string& path, const std::vector<ImageCount>& v) {
+  write_image_counts(f, path, v);
 }
 
 // Shape of dataset `path`; FormatError when it is missing.
@@ -120,6 +124,7 @@ std::vector<T> read_array(const File& f, const std::string& path, const std::vec
 }
 std::vector<Vec3d> read_vec3(const File& f, const std::string& path, hsize_t n);
 std::vector<Quaternion> read_quaternions(const File& f, const std::string& path, hsize_t n);
+std::vector<ImageCount> read_image_counts(const File& f, const std::string& path, hsize_t n);
 // The inverse of write_field: n rows into `out`.
 template <class T>
 void read_field(const File& f, const std::string& path, hsize_t n, std::vector<T>& out) {
@@ -130,6 +135,9 @@ inline void read_field(const File& f, const std::string& path, hsize_t n, std::v
 }
 inline void read_field(const File& f, const std::string& path, hsize_t n, std::vector<Quaternion>& out) {
   out = read_quaternions(f, path, n);
+}
+inline void read_field(const File& f, const std::string& path, hsize_t n, std::vector<ImageCount>& out) {
+  out = read_image_counts(f, path, n);
 }
 
 // Scalar attributes of the object at `object` ("/" is the root).

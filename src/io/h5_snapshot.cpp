@@ -25,6 +25,7 @@ std::size_t field_length(const ParticleSnapshot& s, SnapshotField f, const Snaps
     case SnapshotField::force: return s.force.size();
     case SnapshotField::torque: return s.torque.size();
     case SnapshotField::contact_count: return m.contact_count.size();
+    case SnapshotField::image: return s.image.size();
   }
   return 0;
 }
@@ -45,6 +46,7 @@ void write_field(const h5::File& f, const std::string& path, const ParticleSnaps
     case SnapshotField::force: h5::write_vec3(f, path, s.force); break;
     case SnapshotField::torque: h5::write_vec3(f, path, s.torque); break;
     case SnapshotField::contact_count: h5::write_vector(f, path, m.contact_count); break;
+    case SnapshotField::image: h5::write_image_counts(f, path, s.image); break;
   }
 }
 
@@ -87,6 +89,7 @@ ParticleSnapshot read_snapshot(const std::string& path) {
   read_if_present(f, SnapshotField::mass, n, s.mass);
   if (h5::exists(f, "particles/position")) s.position = h5::read_vec3(f, "particles/position", n);
   if (h5::exists(f, "particles/velocity")) s.velocity = h5::read_vec3(f, "particles/velocity", n);
+  if (h5::exists(f, "particles/image")) s.image = h5::read_image_counts(f, "particles/image", n);
   return s;
 }
 

@@ -21,16 +21,7 @@ RestartState restart_state(const Checkpoint& c) {
   r.step = c.step;
   r.time = c.time;
   const ParticleSnapshot& p = c.particles;
-  r.particles.id = p.id;
-  r.particles.material = p.material;
-  r.particles.marker = p.marker;
-  r.particles.radius = p.radius;
-  r.particles.mass = p.mass;
-  r.particles.inertia = p.inertia;
-  r.particles.position = p.position;
-  r.particles.velocity = p.velocity;
-  r.particles.angular_velocity = p.angular_velocity;
-  r.particles.orientation = p.orientation;
+  for_each_particle_field(r.particles, p, [](const char*, auto& to, const auto& from) { to = from; });
   r.particles.history = c.history;
   r.force = p.force;
   r.torque = p.torque;

@@ -19,6 +19,7 @@ const std::vector<SnapshotFieldInfo>& snapshot_field_table() {
       {SnapshotField::force, "force", 3, "Float", 8, "N"},
       {SnapshotField::torque, "torque", 3, "Float", 8, "N m"},
       {SnapshotField::contact_count, "contact_count", 1, "UInt", 2, "1"},
+      {SnapshotField::image, "image", 3, "Int", 4, "1 (periodic box lengths crossed)"},
   };
   return table;
 }
@@ -49,7 +50,7 @@ SnapshotFields default_snapshot_fields() {
 SnapshotFields all_particle_fields() {
   SnapshotFields f;
   for (const SnapshotFieldInfo& info : snapshot_field_table())
-    if (info.field != SnapshotField::contact_count) f.add(info.field);
+    if (info.field != SnapshotField::contact_count && info.field != SnapshotField::image) f.add(info.field);
   return f;
 }
 

@@ -10,7 +10,7 @@ namespace gs {
 enum class SnapshotField : int {
   id, material, marker, radius, mass, inertia,
   position, velocity, angular_velocity, orientation, force, torque,
-  contact_count
+  contact_count, image
 };
 
 // How a field lies in the file: dataset shape (N) or (N, components), element
@@ -19,7 +19,7 @@ struct SnapshotFieldInfo {
   SnapshotField field;
   const char* name;
   int components;
-  const char* number_type;  // "Float", "UInt" or "UChar"
+  const char* number_type;  // "Float", "Int", "UInt" or "UChar"
   int precision;
   const char* units;
 };
@@ -47,7 +47,8 @@ class SnapshotFields {
 // id, material, marker, radius, position, velocity, angular_velocity: what
 // the CSV output holds.
 SnapshotFields default_snapshot_fields();
-// Every field but contact_count (which needs counts from the caller).
+// Every field but contact_count (which needs counts from the caller) and
+// image (which only periodic runs keep).
 SnapshotFields all_particle_fields();
 
 // Names to fields; position is added when missing. An unknown name throws

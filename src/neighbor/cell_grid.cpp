@@ -20,7 +20,7 @@ double grid_cells(const Vec3d& lo, const Vec3d& hi, double cell_size) {
   return axis_cells(hi.x - lo.x, cell_size) * axis_cells(hi.y - lo.y, cell_size) * axis_cells(hi.z - lo.z, cell_size);
 }
 
-CellGrid make_cell_grid(const Vec3d& lo, const Vec3d& hi, double min_cell_size) {
+CellGrid make_cell_grid(const Vec3d& lo, const Vec3d& hi, double min_cell_size, const PeriodicBox& box) {
   if (!(min_cell_size > 0)) throw std::invalid_argument("cell size must be positive");
   const double cells = grid_cells(lo, hi, min_cell_size);
   // !(<=) also refuses an infinite or NaN count.
@@ -34,9 +34,18 @@ CellGrid make_cell_grid(const Vec3d& lo, const Vec3d& hi, double min_cell_size) 
   CellGrid g;
   g.origin = lo;
   g.cell_size = min_cell_size;
-  g.inverse_cell_size = 1.0 / min_cell_size;
+  g.box = box;
   const double extent[3] = {hi.x - lo.x, hi.y - lo.y, hi.z - lo.z};
-  for (int a = 0; a < 3; ++a) g.dims[a] = int(axis_cells(extent[a], min_cell_size));
+  for (int a = 0; a < 3; ++a) {
+    g.inverse_edge[a] = 1.0 / min_cell_size;
+    g.dims[a] = int(axis_cells(extent[a], min_cell_size));
+    if (box.wraps(a)) {
+      // Whole cells only, none narrower than asked: a partner across the
+      // face then lies in the first or last cell, never one further.
+      g.dims[a] = int(std::max(1.0, std::floor(extent[a] / min_cell_size)));
+      g.inverse_edge[a] = double(g.dims[a]) / extent[a];
+    }
+  }
   return g;
 }
 

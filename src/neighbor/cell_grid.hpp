@@ -1,10 +1,13 @@
 #pragma once
 // Uniform cell grid for the contact search. The cell edge is at least the
 // largest particle diameter, so every contact partner of a particle lies in
-// its own or one of the 26 surrounding cells.
+// its own or one of the 26 surrounding cells. On a periodic axis the cells
+// tile the box exactly (the edge stretched to length / cells), and the cells
+// beyond either face are those at the other face.
 #include <cstdint>
 
 #include "core/hd.hpp"
+#include "core/periodic_box.hpp"
 #include "core/vec3.hpp"
 
 namespace gs {
@@ -15,17 +18,18 @@ struct CellCoord {
 
 struct CellGrid {
   Vec3d origin;        // lower corner of cell (0,0,0)
-  double cell_size = 1;
-  double inverse_cell_size = 1;
+  double cell_size = 1;  // the edge asked for; a periodic axis's may be longer
+  double inverse_edge[3] = {1, 1, 1};  // per axis: 1 / the cells' edge
   int dims[3] = {1, 1, 1};
+  PeriodicBox box;       // the axes that wrap (none: box.axes == 0)
 
   GS_HD std::int64_t cell_count() const { return std::int64_t(dims[0]) * dims[1] * dims[2]; }
 
   // Cell of a point; points outside are clamped to the border cells (their
   // escape is reported by the integrator, not here).
   GS_HD CellCoord coord(const Vec3d& x) const {
-    return {clamp_axis((x.x - origin.x) * inverse_cell_size, 0), clamp_axis((x.y - origin.y) * inverse_cell_size, 1),
-            clamp_axis((x.z - origin.z) * inverse_cell_size, 2)};
+    return {clamp_axis((x.x - origin.x) * inverse_edge[0], 0), clamp_axis((x.y - origin.y) * inverse_edge[1], 1),
+            clamp_axis((x.z - origin.z) * inverse_edge[2], 2)};
   }
   GS_HD std::int64_t linear(const CellCoord& c) const {
     return (std::int64_t(c.z) * dims[1] + c.y) * dims[0] + c.x;
@@ -53,7 +57,8 @@ constexpr double kMaxGridCells = 2.0e9;
 double grid_cells(const Vec3d& lo, const Vec3d& hi, double cell_size);
 
 // Grid over the box [lo, hi] with cells of edge >= min_cell_size. Throws when
-// it would need more than kMaxGridCells cells.
-CellGrid make_cell_grid(const Vec3d& lo, const Vec3d& hi, double min_cell_size);
+// it would need more than kMaxGridCells cells. On the axes `box` wraps, the
+// cells tile [lo, hi) exactly: floor(length / min_cell_size) cells, stretched.
+CellGrid make_cell_grid(const Vec3d& lo, const Vec3d& hi, double min_cell_size, const PeriodicBox& box = {});
 
 }  // namespace gs

@@ -76,11 +76,31 @@ struct CellBeginsByCell {
   }
 };
 
+// The cells next to cell c along one axis (offsets -1, 0, 1 in that order),
+// each once: at a face, the cells beyond it are left out, or on a periodic
+// axis taken from the other face (an axis of one or two cells has fewer
+// distinct neighbours). Returns how many are in `out`.
+GS_HD GS_INLINE int neighbour_cells(const CellGrid& grid, int axis, int c, int out[3]) {
+  const int n = grid.dims[axis];
+  int k = 0;
+  for (int d = -1; d <= 1; ++d) {
+    int v = c + d;
+    if (v < 0 || v >= n) {
+      if (!grid.box.wraps(axis)) continue;
+      v = v < 0 ? v + n : v - n;
+    }
+    bool seen = false;
+    for (int m = 0; m < k; ++m) seen = seen || out[m] == v;
+    if (!seen) out[k++] = v;
+  }
+  return k;
+}
+
 // Contact candidates of a particle from the cell list: every particle in the
 // 27 cells around the particle's cell, in a fixed order (dz, dy, dx) and, in
-// a cell, by ascending id (the list is sorted by (cell, id)). The three cells
-// dx = -1, 0, 1 of a row are consecutive in the list, so a row is read as one
-// range, in that same order. The particle itself is among them.
+// a cell, by ascending id (the list is sorted by (cell, id)). The cells of a
+// row that are consecutive in x are consecutive in the list, so they are
+// read as one range, in that same order. The particle itself is among them.
 struct CellCandidates {
   CellGrid grid;
   const Index* sorted;      // particle indices in (cell, id) order
@@ -89,19 +109,21 @@ struct CellCandidates {
   template <class Visit>
   GS_HD GS_INLINE void for_each(Index /*i*/, const Vec3d& xi, Visit& visit) const {
     const CellCoord c = grid.coord(xi);
-    const int x_first = c.x > 0 ? c.x - 1 : 0;
-    const int x_last = c.x + 1 < grid.dims[0] ? c.x + 1 : c.x;
-    for (int dz = -1; dz <= 1; ++dz) {
-      const int z = c.z + dz;
-      if (z < 0 || z >= grid.dims[2]) continue;
-      for (int dy = -1; dy <= 1; ++dy) {
-        const int y = c.y + dy;
-        if (y < 0 || y >= grid.dims[1]) continue;
-        const std::int64_t row = grid.linear(CellCoord{0, y, z});
-        const Index end = cell_begin[row + x_last + 1];
-        for (Index k = cell_begin[row + x_first]; k < end; ++k) visit(sorted[k]);
+    int xs[3], ys[3], zs[3];
+    const int nx = neighbour_cells(grid, 0, c.x, xs), ny = neighbour_cells(grid, 1, c.y, ys),
+              nz = neighbour_cells(grid, 2, c.z, zs);
+    for (int a = 0; a < nz; ++a)
+      for (int b = 0; b < ny; ++b) {
+        const std::int64_t row = grid.linear(CellCoord{0, ys[b], zs[a]});
+        // Runs of cells consecutive in x (all of them but across a periodic face).
+        for (int first = 0; first < nx;) {
+          int last = first;
+          while (last + 1 < nx && xs[last + 1] == xs[last] + 1) ++last;
+          const Index end = cell_begin[row + xs[last] + 1];
+          for (Index k = cell_begin[row + xs[first]]; k < end; ++k) visit(sorted[k]);
+          first = last + 1;
+        }
       }
-    }
   }
 };
 

@@ -43,6 +43,7 @@ struct VerletList {
 
   DeviceArray<Index> begin, list;
   DeviceArray<Vec3d> reference;  // owned particles' positions at the build
+  PeriodicBox box;               // the grid's at the build: moves are measured to the nearest image
   std::vector<std::vector<Index>> parts;  // per thread, while building
   double skin = 0;
   Index n_owned = 0, n_total = 0;  // the store's layout at the build
@@ -52,15 +53,16 @@ struct VerletList {
   std::size_t bytes() const { return begin.bytes() + list.bytes() + reference.bytes(); }
 };
 
-// Whether j (not i) lies within r_i + r_j + skin of x_i.
+// Whether j (not i) lies within r_i + r_j + skin of x_i (its nearest image).
 struct WithinSkin {
   const Vec3d* position;
   const float* radius;
   double skin;
+  PeriodicBox box;
   GS_HD bool operator()(Index i, Index j, const Vec3d& xi) const {
     if (j == i) return false;
     const double reach = double(radius[i]) + double(radius[j]) + skin;
-    return norm2(xi - position[j]) < reach * reach;
+    return norm2(box.separation(xi, position[j])) < reach * reach;
   }
 };
 
@@ -97,7 +99,7 @@ struct TouchingInIdOrder {
     auto collect = [&](Index j) {
       if (j == i) return;
       const double reach = double(radius[i]) + double(radius[j]);
-      if (!(norm2(xi - position[j]) < reach * reach)) return;
+      if (!(norm2(cells.grid.box.separation(xi, position[j])) < reach * reach)) return;
       if (n < kMaxTouching) touching[n++] = j;
       else overflow = true;
     };
@@ -108,12 +110,14 @@ struct TouchingInIdOrder {
   }
 };
 
-// Whether owned particle i has moved more than `limit` since the build.
+// Whether owned particle i has moved more than `limit` since the build (a
+// particle wrapped across a periodic face has moved by its nearest image).
 struct MovedBeyond {
   const Vec3d* position;
   const Vec3d* reference;
   double limit;
-  GS_HD bool operator()(Index i) const { return norm2(position[i] - reference[i]) > limit * limit; }
+  PeriodicBox box;
+  GS_HD bool operator()(Index i) const { return norm2(box.separation(position[i], reference[i])) > limit * limit; }
 };
 
 // Builds the list of the n_owned first particles against all n_total of the
@@ -124,10 +128,11 @@ void build_verlet_list(VerletList& v, const CellList& cells, const Vec3d* positi
                        const ParticleId* id, Index n_owned, Index n_total, double skin) {
   static_assert(Exec::backend == Backend::cpu, "the Verlet list lives in host memory");
   Exec::fill_verlet_list(v, CellCandidates{cells.grid, cells.sorted.data(), cells.cell_begin.data()},
-                         WithinSkin{position, radius, skin}, id, n_owned);
+                         WithinSkin{position, radius, skin, cells.grid.box}, id, n_owned);
   v.reference.resize(std::size_t(n_owned));
   backend_copy(Exec::backend, v.reference.data(), position, std::size_t(n_owned) * sizeof(Vec3d));
   v.skin = skin;
+  v.box = cells.grid.box;
   v.n_owned = n_owned;
   v.n_total = n_total;
   v.valid = true;
@@ -137,7 +142,7 @@ void build_verlet_list(VerletList& v, const CellList& cells, const Vec3d* positi
 template <class Exec>
 bool verlet_list_stale(const VerletList& v, const Vec3d* position, Index n_owned, Index n_total) {
   if (!v.valid || v.n_owned != n_owned || v.n_total != n_total) return true;
-  return Exec::any(n_owned, MovedBeyond{position, v.reference.data(), 0.5 * v.skin});
+  return Exec::any(n_owned, MovedBeyond{position, v.reference.data(), 0.5 * v.skin, v.box});
 }
 
 }  // namespace gs

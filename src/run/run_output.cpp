@@ -34,6 +34,8 @@ RunOutput::RunOutput(const SceneSpec& scene, const std::string& directory, Trans
   fields_ = scene.output.fields.empty() ? default_snapshot_fields() : parse_snapshot_fields(scene.output.fields);
   if (fields_.has(SnapshotField::contact_count) && !keeps_history(scene.model, scene.effects))
     throw std::invalid_argument("output.fields: contact_count needs a contact history (friction, rolling resistance or a hysteretic contact model)");
+  // A periodic run's positions are wrapped: the image counts unwrap them.
+  if (particle_fields_kept(scene) & kImageCounts) fields_.add(SnapshotField::image);
   if (transport_.rank() != 0) return;
   std::filesystem::create_directories(directory_);
   log_ = open_for_writing(directory_ + "/run.log", "a");
@@ -209,6 +211,7 @@ void RunOutput::fault_snapshot(const Simulation& sim) {
     m.scene_path = scene_.path;
     m.wall_names = scene_.wall_names;
     SnapshotFields fields = all_particle_fields();
+    if (particle_fields_kept(scene_) & kImageCounts) fields.add(SnapshotField::image);
     if (keeps_history(scene_.model, scene_.effects)) {
       fields.add(SnapshotField::contact_count);
       m.contact_count = s.contacts;

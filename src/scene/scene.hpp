@@ -8,6 +8,8 @@
 #include "scene/mixing_spec.hpp"
 #include "scene/particle_sets.hpp"
 #include "core/materials.hpp"
+#include "core/particle_fields.hpp"
+#include "core/periodic_box.hpp"
 #include "core/types.hpp"
 #include "core/vec3.hpp"
 #include "walls/mesh.hpp"
@@ -52,6 +54,7 @@ struct MarkingSpec {
 struct SceneSettings {
   std::string path;                  // file it came from, for messages
   Vec3d domain_min, domain_max;      // particles must stay inside [m]
+  unsigned periodic_axes = 0;        // bit a: axis a wraps (core/periodic_box.hpp)
   Vec3d gravity;                     // [m/s^2]
   ContactModel model = ContactModel::linear;
   Precision precision = Precision::fp32;
@@ -75,6 +78,13 @@ struct SceneSettings {
   // run ignores (a parameter of an effect that is off); check and run print them.
   std::vector<std::string> warnings;
 };
+
+// The domain's periodic box (no axis wraps when periodic_axes is 0).
+inline PeriodicBox periodic_box(const SceneSettings& s) {
+  return make_periodic_box(s.periodic_axes, s.domain_min, s.domain_max);
+}
+// The optional particle fields a run of the scene keeps (ParticleField bits).
+inline unsigned particle_fields_kept(const SceneSettings& s) { return s.periodic_axes != 0 ? kImageCounts : 0u; }
 
 struct SceneSpec : SceneSettings {
   // The initial particles, in two kinds of sets whose ids interleave in the

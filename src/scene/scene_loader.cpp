@@ -42,7 +42,9 @@ void parse_decomposition(const Map& m, SceneSpec& s) {
 }
 
 void parse_globals(const Map& top, SceneSpec& s) {
-  box_corners(Map(top.get("domain"), {"min", "max"}), s.domain_min, s.domain_max);
+  const Map domain(top.get("domain"), {"min", "max", "periodic"});
+  box_corners(domain, s.domain_min, s.domain_max);
+  if (domain.has("periodic")) s.periodic_axes = parse_periodic_axes(domain.get("periodic"));
   s.gravity = vec3_or(top, "gravity", Vec3d());
   if (top.has("contact_model"))
     s.model = contact_model_named(choice(top.get("contact_model"), contact_model_names()));
@@ -77,6 +79,8 @@ void parse_globals(const Map& top, SceneSpec& s) {
       if (fields.has(SnapshotField::contact_count) && !keeps_history(s.model, s.effects))
         fail(list, "contact_count needs friction or rolling resistance (contact history); set effects.friction or "
                    "effects.rolling_resistance, or leave the field out");
+      if (fields.has(SnapshotField::image) && s.periodic_axes == 0)
+        fail(list, "image (image counts) is kept only by periodic runs; set domain.periodic, or leave the field out");
     }
     s.output.checkpoint_interval = number_or(o, "checkpoint_interval", 0.0, nonnegative);
     s.output.checkpoint_minutes = number_or(o, "checkpoint_minutes", 0.0, nonnegative);
@@ -243,6 +247,7 @@ SceneSpec parse_scene(const std::string& yaml_text, const std::string& source) {
   parse_walls(top, s);
   parse_particles(top, s);
   parse_pairs(top, s);
+  check_periodic_box(top, s);
   check_search_grid(top, s);
   resolve_time_step(top, s);
   if (const std::string problem = fp32_state_problem(s); !problem.empty()) fail(top.get("precision"), problem);

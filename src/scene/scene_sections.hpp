@@ -15,6 +15,15 @@ void parse_walls(const Map& top, SceneSpec& s);
 // against the domain (needs s.meshes and the walls section).
 void check_mesh_binning(const Map& top, const SceneSpec& s, double cell_size);
 
+// `domain.periodic` (a list of axes) -> a set of axis bits; scene_periodic.cpp.
+unsigned parse_periodic_axes(const Val& v);
+// Refuses a wall of walls[first_wall, end), all from the entry `item`, that
+// cannot meet the periodic faces (needs s.periodic_axes and the domain).
+void check_periodic_walls(const SceneSpec& s, std::size_t first_wall, const Val& item);
+// Refuses a periodic box shorter than two largest diameters along a periodic
+// axis, and meshes that come near its periodic faces (needs the particles).
+void check_periodic_box(const Map& top, const SceneSpec& s);
+
 // `particles:` -> s.particles, then checks them against the domain, the walls
 // and each other (needs s.materials, s.walls and the domain).
 void parse_particles(const Map& top, SceneSpec& s);

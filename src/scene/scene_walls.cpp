@@ -201,10 +201,12 @@ void parse_walls(const Map& top, SceneSpec& s) {
       name += std::to_string(n);
     }
     const Val shape = m.get(kind);
+    const std::size_t first_wall = s.walls.size();
     if (kind == "plane") add_plane(s, proto, shape, name);
     if (kind == "box") add_box(s, proto, shape, name);
     if (kind == "cylinder") add_cylinder(s, proto, shape, name);
     if (kind == "mesh") add_mesh_wall(s, proto, shape, name);
+    check_periodic_walls(s, first_wall, item);
   });
   if (s.walls.size() > std::size_t(kMaxWalls))
     fail(list, "the entries expand to " + std::to_string(s.walls.size()) + " walls; at most " +

@@ -57,8 +57,8 @@ struct MeshView {
   GS_HD void cell_range(std::int32_t m, const Vec3d& x, std::int32_t& begin, std::int32_t& end) const {
     const Vec3d r = pose_reference_point(pose[m], x);
     const CellGrid& g = bin_grid[m];
-    const double f[3] = {(r.x - g.origin.x) * g.inverse_cell_size, (r.y - g.origin.y) * g.inverse_cell_size,
-                         (r.z - g.origin.z) * g.inverse_cell_size};
+    const double f[3] = {(r.x - g.origin.x) * g.inverse_edge[0], (r.y - g.origin.y) * g.inverse_edge[1],
+                         (r.z - g.origin.z) * g.inverse_edge[2]};
     begin = end = 0;
     for (int a = 0; a < 3; ++a)
       if (!(f[a] >= 0 && f[a] < double(g.dims[a]))) return;
