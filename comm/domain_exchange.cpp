@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "backend/memory.hpp"
+#include "decomposition/halo_neighbours.hpp"
 #include "decomposition/metis_decomposition.hpp"
 #include "decomposition/slab_decomposition.hpp"
 
@@ -36,11 +37,28 @@ std::vector<Vec3d> owned_positions(const ParticleStore& s) {
 }  // namespace
 
 DomainExchange::DomainExchange(Transport& transport, std::unique_ptr<Decomposition> decomposition, double halo,
-                               const DecompositionSpec& spec)
-    : transport_(transport), decomposition_(std::move(decomposition)), halo_(halo), spec_(spec) {
+                               const DecompositionSpec& spec, const PeriodicBox& box)
+    : transport_(transport), decomposition_(std::move(decomposition)), halo_(halo), spec_(spec), box_(box) {
   if (decomposition_->n_ranks() != transport_.size())
     throw std::logic_error("decomposition and transport disagree on the number of ranks");
-  peers_ = decomposition_->neighbours(rank());
+  peers_ = neighbours();
+}
+
+OwnerMapHost DomainExchange::owner_map() const {
+  OwnerMapHost m = decomposition_->owner_map();
+  m.shape.box = box_;
+  return m;
+}
+
+std::vector<int> DomainExchange::neighbours() const {
+  std::vector<int> peers = decomposition_->neighbours(rank());
+  if (box_.axes == 0) return peers;
+  const std::vector<std::vector<int>> near = halo_neighbours(owner_map(), halo_, ranks());
+  const std::vector<int>& mine = near[std::size_t(rank())];
+  peers.insert(peers.end(), mine.begin(), mine.end());
+  std::sort(peers.begin(), peers.end());
+  peers.erase(std::unique(peers.begin(), peers.end()), peers.end());
+  return peers;
 }
 
 std::vector<int> DomainExchange::all_other_ranks() const {
@@ -67,7 +85,7 @@ ParticleRouter& DomainExchange::router(const ParticleStore& s, const std::vector
     inbox_.clear();
     map_current_ = false;
   }
-  if (!map_current_) router_->set_map(decomposition_->owner_map());
+  if (!map_current_) router_->set_map(owner_map());
   map_current_ = true;
   router_->set_peers(rank(), ranks(), peers);
   return *router_;
@@ -183,7 +201,7 @@ bool DomainExchange::rebalance(ParticleStore& s, ParticleMovement& k) {
     metis->rebalance(h);
   }
   map_current_ = false;
-  peers_ = decomposition_->neighbours(rank());
+  peers_ = neighbours();
   send_to_owners(s, k, all_other_ranks());
   return true;
 }

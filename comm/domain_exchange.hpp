@@ -18,9 +18,10 @@ namespace gs {
 
 class DomainExchange final : public RankExchange {
  public:
-  // halo: interaction range (the largest particle diameter).
+  // halo: interaction range (the largest particle diameter); box: the
+  // domain's periodic axes, across whose faces halos reach.
   DomainExchange(Transport& transport, std::unique_ptr<Decomposition> decomposition, double halo,
-                 const DecompositionSpec& spec);
+                 const DecompositionSpec& spec, const PeriodicBox& box = {});
 
   int rank() const override { return transport_.rank(); }
   int ranks() const override { return transport_.size(); }
@@ -53,11 +54,16 @@ class DomainExchange final : public RankExchange {
   // previous lap to `phase`.
   void lap(ParticleMovement& k, double ExchangeSplit::*phase);
   std::vector<int> all_other_ranks() const;
+  // The ranks this one trades ghosts with: the decomposition's neighbours,
+  // and across the periodic faces those on the other side.
+  std::vector<int> neighbours() const;
+  OwnerMapHost owner_map() const;  // the decomposition's, with the periodic box
 
   Transport& transport_;
   std::unique_ptr<Decomposition> decomposition_;
   double halo_;
   DecompositionSpec spec_;
+  PeriodicBox box_;
   std::vector<int> peers_;  // neighbours of this rank, ascending
   bool timed_ = false;
   ExchangeSplit split_;

@@ -1,7 +1,6 @@
 #include "comm/scene_split.hpp"
 
 #include <functional>
-#include <stdexcept>
 
 #include "decomposition/metis_decomposition.hpp"
 #include "decomposition/slab_decomposition.hpp"
@@ -51,15 +50,10 @@ std::unique_ptr<Decomposition> decompose(const SceneSpec& scene, Transport& tran
 
 std::shared_ptr<DomainExchange> split(const SceneSpec& scene, Transport& transport, const PositionBlocks& blocks,
                                       bool shared) {
-  // Every rank holds the same scene, so every rank refuses it alike.
-  if (scene.periodic_axes != 0)
-    throw std::invalid_argument(scene.path +
-                                ": domain.periodic: periodic boundaries run on one rank in this version (the slabs "
-                                "and METIS parts do not wrap yet); run it without mpirun, or with one rank");
   // Ghosts reach one largest diameter, the widest contact.
   const double range = 2 * largest_radius(scene);
   return std::make_shared<DomainExchange>(transport, decompose(scene, transport, range, blocks, shared), range,
-                                          scene.decomposition);
+                                          scene.decomposition, periodic_box(scene));
 }
 
 }  // namespace

@@ -14,7 +14,7 @@ using Histogram = std::vector<std::int64_t>;
 // One layer histogram per axis x, y, z.
 using LayerHistograms = std::array<Histogram, 3>;
 
-inline double component(const Vec3d& v, int axis) { return axis == 0 ? v.x : (axis == 1 ? v.y : v.z); }
+// component(v, axis): core/periodic_box.hpp (through core/owner_map.hpp).
 
 // A uniform grid of coarse cells covering the box [lo, hi]. Ownership is
 // defined per coarse cell, so every rank must map a point to the same integer

@@ -20,7 +20,7 @@ int command_check(const std::vector<std::string>& args) {
   std::printf("particles:      %zu\n", particle_count(scene));
   std::printf("walls:          %zu\n", scene.walls.size());
   if (scene.periodic_axes != 0)
-    std::printf("periodic:       %s%s%s (one rank)\n", scene.periodic_axes & 1u ? "x" : "", scene.periodic_axes & 2u ? "y" : "",
+    std::printf("periodic:       %s%s%s\n", scene.periodic_axes & 1u ? "x" : "", scene.periodic_axes & 2u ? "y" : "",
                 scene.periodic_axes & 4u ? "z" : "");
   std::printf("precision:      %s\n", precision_name(scene.precision));
   std::printf("contact time:   %.6g s\n", scene.contact_time);

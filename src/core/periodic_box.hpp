@@ -24,6 +24,9 @@ struct ImageCount {
   std::int32_t x = 0, y = 0, z = 0;
 };
 
+// Component `axis` (0 x, 1 y, 2 z) of v.
+GS_HD inline double component(const Vec3d& v, int axis) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; }
+
 struct PeriodicBox {
   unsigned axes = 0;  // bit a: axis a (x = 0, y = 1, z = 2) wraps
   Vec3d lo, hi;       // the domain
@@ -63,7 +66,7 @@ struct PeriodicBox {
       x += l;
       --n;
       // lo - 1e-20 + l rounds to hi: keep the particle inside [lo, hi).
-      if (x >= hi) x = std::nextafter(hi, lo);
+      if (x >= hi) x = ::nextafter(hi, lo);  // the C function: host and device both have it
     }
   }
 };

@@ -11,12 +11,10 @@ namespace {
 
 const char* const kAxisNames[3] = {"x", "y", "z"};
 
-double along(const Vec3d& v, int axis) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; }
-
 // Whether v points along `axis` alone (its other components vanish).
 bool only_along(const Vec3d& v, int axis) {
   for (int b = 0; b < 3; ++b)
-    if (b != axis && std::abs(along(v, b)) > 1e-12 * norm(v)) return false;
+    if (b != axis && std::abs(component(v, b)) > 1e-12 * norm(v)) return false;
   return true;
 }
 
@@ -29,7 +27,7 @@ std::string periodic_wall_problem(const Wall& w, int axis, const Vec3d& lo, cons
     return "it rotates about an axis that is not along the periodic axis " + a;
   switch (w.kind) {
     case WallKind::plane:
-      if (std::abs(along(w.normal, axis)) > 1e-12)
+      if (std::abs(component(w.normal, axis)) > 1e-12)
         return "a plane crossing the periodic axis " + a + " (its normal has a " + a +
                " component) would stop at the periodic faces; only planes parallel to a periodic axis can meet them";
       return "";
@@ -39,12 +37,12 @@ std::string periodic_wall_problem(const Wall& w, int axis, const Vec3d& lo, cons
     case WallKind::cylinder: {
       if (!only_along(w.normal, axis))
         return "a cylinder whose axis is not along the periodic axis " + a + " would stop at the periodic faces";
-      const double p0 = along(w.point, axis), p1 = p0 + w.length * along(w.normal, axis);
-      if (std::min(p0, p1) > along(lo, axis) || std::max(p0, p1) < along(hi, axis))
+      const double p0 = component(w.point, axis), p1 = p0 + w.length * component(w.normal, axis);
+      if (std::min(p0, p1) > component(lo, axis) || std::max(p0, p1) < component(hi, axis))
         return "a cylinder along the periodic axis " + a + " must span the domain along it (from " +
-               str(along(lo, axis)) + " to " + str(along(hi, axis)) + " m), this one spans " +
+               str(component(lo, axis)) + " to " + str(component(hi, axis)) + " m), this one spans " +
                str(std::min(p0, p1)) + " to " + str(std::max(p0, p1)) + " m";
-      if (along(w.velocity, axis) != 0) return "a cylinder along the periodic axis " + a + " may not move along it";
+      if (component(w.velocity, axis) != 0) return "a cylinder along the periodic axis " + a + " may not move along it";
       return "";
     }
   }
@@ -87,8 +85,8 @@ void check_periodic_box(const Map& top, const SceneSpec& s) {
     const std::string a = kAxisNames[axis];
     // A particle must touch at most one image of a partner: its force sum
     // goes by partner id, and both images would carry the same id.
-    if (!(along(length, axis) >= 2 * diameter))
-      fail(where, "the domain is " + str(along(length, axis)) + " m long along the periodic axis " + a +
+    if (!(component(length, axis) >= 2 * diameter))
+      fail(where, "the domain is " + str(component(length, axis)) + " m long along the periodic axis " + a +
                       ", shorter than two largest particle diameters (2 x " + str(diameter) +
                       " m): a particle could touch two images of the same partner; lengthen the domain along " + a);
   }
@@ -106,15 +104,15 @@ void check_periodic_box(const Map& top, const SceneSpec& s) {
     for (int axis = 0; axis < 3; ++axis) {
       if (!((s.periodic_axes >> axis) & 1u)) continue;
       const std::string a = kAxisNames[axis];
-      const bool clear = along(lo, axis) >= along(s.domain_min, axis) + diameter &&
-                         along(hi, axis) <= along(s.domain_max, axis) - diameter;
-      const bool stays = along(motion.velocity, axis) == 0 &&
+      const bool clear = component(lo, axis) >= component(s.domain_min, axis) + diameter &&
+                         component(hi, axis) <= component(s.domain_max, axis) - diameter;
+      const bool stays = component(motion.velocity, axis) == 0 &&
                          (norm2(motion.angular_velocity) == 0 || only_along(motion.angular_velocity, axis));
       if (!clear || !stays)
         fail(item, "mesh " + quoted(s.meshes.names[std::size_t(m)]) +
                        " must keep a largest particle diameter (" + str(diameter) +
                        " m) clear of the periodic faces along " + a +
-                       " (it spans " + str(along(lo, axis)) + " to " + str(along(hi, axis)) +
+                       " (it spans " + str(component(lo, axis)) + " to " + str(component(hi, axis)) +
                        " m) and move only across that axis or turn about it; meshes are not wrapped");
     }
     ++m;

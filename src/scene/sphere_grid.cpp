@@ -3,11 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-namespace gs {
+#include "core/periodic_box.hpp"  // component
 
-namespace {
-double component(const Vec3d& v, int axis) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; }
-}  // namespace
+namespace gs {
 
 CellLayout::CellLayout(const Vec3d& lo, const Vec3d& hi, double wished_side, double max_cells) : lo_(lo) {
   h_ = wished_side > 0 ? wished_side : 1.0;

@@ -106,6 +106,7 @@ void expect_rank_independent(const SceneSpec& scene, long long steps, RunOptions
   EXPECT_TRUE(same_bits(all.velocity, ref.velocity));
   EXPECT_TRUE(same_bits(all.angular_velocity, ref.angular_velocity));
   EXPECT_TRUE(same_bits(all.force, ref.force));
+  EXPECT_TRUE(same_bits(all.image, ref.image));  // periodic runs; empty otherwise
   const ContactMap ref_contacts = contacts_of(ref, one.history());
   EXPECT_GT(ref_contacts.size(), 0u);
   EXPECT_TRUE(ref_contacts == many_contacts) << "contact histories differ";
@@ -185,6 +186,31 @@ constexpr long long kStreamingSteps = 380;  // 1.9 ms: the second rows of each s
 
 TEST(RankIndependence, StreamsThroughSlabBoundaryBothWays) {
   expect_rank_independent(streaming_scene(), kStreamingSteps);
+}
+
+// Periodic in x, slabs along x, which wrap: the two lattices fly apart,
+// cross the periodic faces (the boundary between the last slab and the
+// first) and collide there, grazing, with friction; on every rank count
+// the positions, image counts and springs are those of one rank.
+SceneSpec periodic_streaming_scene() {
+  SceneSpec s = streaming_scene();
+  for (ParticleInit& p : s.particles) p.velocity.x = -p.velocity.x;  // towards the faces
+  s.domain_min.x = -0.016;
+  s.domain_max.x = 0.016;
+  s.periodic_axes = 1u;
+  return s;
+}
+constexpr long long kPeriodicSteps = 1400;  // 7 mm each way: the outer rows meet across the faces and cross them
+
+TEST(RankIndependence, PeriodicStreamsAcrossWrappingSlabs) {
+  const SceneSpec s = periodic_streaming_scene();
+  expect_rank_independent(s, kPeriodicSteps);
+  if (world().rank() != 0) return;
+  Simulation one(s, RunOptions{});
+  one.run(kPeriodicSteps);
+  int crossed = 0;
+  for (const ImageCount& n : one.snapshot().image) crossed += n.x != 0 ? 1 : 0;
+  EXPECT_GT(crossed, 20);
 }
 
 // The hysteretic normal law keeps each contact's peak overlap in its history
@@ -306,6 +332,10 @@ TEST_F(RankIndependenceOnGpus, CompressedLatticeWithManyContacts) {
 
 TEST_F(RankIndependenceOnGpus, StreamsThroughSlabBoundaryBothWays) {
   expect_rank_independent(streaming_scene(), kStreamingSteps, options);
+}
+
+TEST_F(RankIndependenceOnGpus, PeriodicStreamsAcrossWrappingSlabs) {
+  expect_rank_independent(periodic_streaming_scene(), kPeriodicSteps, options);
 }
 
 }  // namespace
