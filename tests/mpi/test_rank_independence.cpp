@@ -213,6 +213,13 @@ TEST(RankIndependence, PeriodicStreamsAcrossWrappingSlabs) {
   EXPECT_GT(crossed, 20);
 }
 
+// The same with METIS parts: the parts across the periodic faces trade ghosts.
+TEST(RankIndependence, PeriodicStreamsAcrossMetisParts) {
+  SceneSpec s = periodic_streaming_scene();
+  s.decomposition.method = DecompositionMethod::metis;
+  expect_rank_independent(s, kPeriodicSteps);
+}
+
 // The hysteretic normal law keeps each contact's peak overlap in its history
 // (its transport between ranks: tests/engine/test_particle_message.cpp).
 TEST(RankIndependence, HystereticSettlingWithSlabs) {
