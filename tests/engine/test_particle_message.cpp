@@ -103,7 +103,7 @@ class MessageTest : public testing::TestWithParam<Backend> {
     ASSERT_EQ(z.n_owned, Index(3 + which.size()));
     std::vector<Index> arrived(which.size());
     for (std::size_t k = 0; k < which.size(); ++k) arrived[k] = Index(3 + k);
-    for_each_particle_field(z, all, [&](const char* name, const auto& field, const auto& sent) {
+    for_each_kept_particle_field(z, all, z.fields_kept, [&](const char* name, const auto& field, const auto& sent) {
       EXPECT_TRUE(same(picked(field.to_host(), arrived), picked(sent, which))) << name;
     });
     const HostHistory got = to->movement().history(z);
