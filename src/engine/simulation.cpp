@@ -40,7 +40,9 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
   // Each rank generates only the particles it owns (lattices site by site).
   const auto t0 = Clock::now();
   RankExchange* split = exchange_.get();
-  upload(scene, [split](const Vec3d& x) { return !split || split->owns(x); });
+  std::function<bool(const Vec3d&)> keep;  // empty: every particle (one rank)
+  if (split) keep = [split](const Vec3d& x) { return split->owns(x); };
+  upload(scene, keep);
   if (exchange_) exchange_->refresh_ghosts(store_, kernels_->movement());
   kernels_->synchronize();
   setup_timings_.particles = seconds_since(t0);
@@ -126,16 +128,23 @@ void Simulation::restore(const RestartState& r) {
 
 // The owned particles go straight from the generators into host copies of
 // the store's fields (filled on every thread, no list of particles between),
-// which live only until they are uploaded.
+// a block at a time, each uploaded to its place before the next is made: the
+// host holds one block, not the rank's particles.
 void Simulation::upload(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep) {
+  constexpr std::size_t kBlock = std::size_t(1) << 22;
   ParticleRecords host;
   const std::vector<MaterialSpec>& materials = scene_.materials;
   // fp32 state: positions and velocities start on the fp32 grid they live on.
   const bool fp32 = fp32_state(scene_.precision);
   auto state = [fp32](const Vec3d& v) { return fp32 ? on_fp32_grid(v) : v; };
-  for_each_selected(
-      scene, keep,
-      [&](std::size_t n) { for_each_particle_field(host, [n](const char*, auto& field) { field.resize(n); }); },
+  for_each_selected_block(
+      scene, keep, kBlock,
+      [&](std::size_t n) {
+        store_.resize_arrays(n);
+        store_.n_owned = Index(n);
+        const std::size_t held = std::min(n, kBlock);
+        for_each_particle_field(host, [held](const char*, auto& field) { field.resize(held); });
+      },
       [&](std::size_t k, const ParticleInit& p) {
         const double m = sphere_mass(p.radius, materials[std::size_t(p.material)].density);
         host.id[k] = p.id;
@@ -148,16 +157,15 @@ void Simulation::upload(const SceneSpec& scene, const std::function<bool(const V
         host.velocity[k] = state(p.velocity);
         host.angular_velocity[k] = state(p.angular_velocity);
         host.orientation[k] = Quaternion{1, 0, 0, 0};
+      },
+      [&](std::size_t first, std::size_t count) {
+        for_each_particle_field(store_, host, [first, count](const char*, auto& field, const auto& from) {
+          field.from_host(from.data(), count, first);
+        });
       });
-  const std::size_t n = host.id.size();
-  for_each_particle_field(store_, host, [](const char*, auto& field, auto& from) {
-    field.from_host(from);
-    std::decay_t<decltype(from)>().swap(from);  // one host copy less to hold
-  });
-  store_.n_owned = Index(n);
   store_.n_ghost = 0;
   ++store_.revision;
-  kernels_->movement().reserve(Index(n));
+  kernels_->movement().reserve(store_.n_owned);
 }
 
 void Simulation::move_walls(double t) {

@@ -148,6 +148,18 @@ std::unique_ptr<Simulation> start(const SceneSpec& scene, const RunRequest& a, T
   return std::make_unique<Simulation>(scene, options, exchange, *restart);
 }
 
+// Rank k of K: the stored positions of particles [k N / K, (k+1) N / K).
+std::vector<Vec3d> checkpoint_position_share(const std::string& path, const Transport& transport) {
+  const std::size_t n = checkpoint_particle_count(path), k = std::size_t(transport.rank()),
+                    ranks = std::size_t(transport.size());
+  std::vector<Vec3d> share;
+  for_each_checkpoint_position_block(path, n * k / ranks, n * (k + 1) / ranks,
+                                     [&](std::size_t, const std::vector<Vec3d>& x) {
+                                       share.insert(share.end(), x.begin(), x.end());
+                                     });
+  return share;
+}
+
 // Ranks that read their checkpoint from different copies (node-local
 // scratch) must have read the same step.
 void expect_same_step_everywhere(Transport& transport, const std::string& path, long long step) {
@@ -300,23 +312,31 @@ int run_scene(const RunRequest& request, Transport& transport) {
   bool own_gpu = false;
   std::optional<RestartState> restart;
   std::shared_ptr<DomainExchange> split;
+  // A restart on several ranks: each rank reads its share of the stored
+  // positions for the split, then only the particles it owns.
+  std::vector<Vec3d> share;
   on_every_rank(transport, [&] {
     own_gpu = a.backend == Backend::cuda && select_cuda_device(transport.local_rank());
-    if (!a.restart.empty()) {
-      CheckpointExpectations expect;
-      expect.scene_hash = hash;
-      restart = restart_state(read_checkpoint(a.restart, expect));
-    }
+    if (!a.restart.empty() && transport.size() > 1) share = checkpoint_position_share(a.restart, transport);
   });
-  if (restart) expect_same_step_everywhere(transport, a.restart, restart->step);
   const double load_seconds = seconds_since(setup_start);
-  // split_scene's one collective (summing the counts) comes before anything
+  // The split's one collective (summing the counts) comes before anything
   // in it can fail, so every rank reaches it.
   if (transport.size() > 1)
     on_every_rank(transport, [&] {
-      split = restart ? split_restart(scene, transport, restart->particles.position) : split_scene(scene, transport);
+      split = a.restart.empty() ? split_scene(scene, transport) : split_restart(scene, transport, share);
     });
+  share = {};
   const double split_seconds = seconds_since(setup_start) - load_seconds;
+  on_every_rank(transport, [&] {
+    if (a.restart.empty()) return;
+    CheckpointExpectations expect;
+    expect.scene_hash = hash;
+    std::function<bool(const Vec3d&)> keep;
+    if (split) keep = [&split](const Vec3d& x) { return split->owns(x); };
+    restart = restart_state(read_checkpoint(a.restart, expect, keep));
+  });
+  if (restart) expect_same_step_everywhere(transport, a.restart, restart->step);
   // Collective from here on: an error on one rank alone in the middle of an
   // exchange can only be reported by ending every rank (main.cpp).
   std::unique_ptr<Simulation> sim = start(scene, a, transport, split, restart, own_gpu);
@@ -338,6 +358,12 @@ int run_scene(const RunRequest& request, Transport& transport) {
   const Simulation::SetupTimings& st = sim->setup_timings();
   out.log("set up in %.2f s (scene %.2f s, decomposition %.2f s, particles %.2f s, first forces %.2f s)\n",
           setup_seconds, load_seconds, split_seconds, st.particles, st.first_forces);
+  const HostThreads host = host_threads();
+  out.log("host threads (rank 0): %d on %d core%s\n", host.threads, host.cores, host.cores > 1 ? "s" : "");
+  if (host.threads > host.cores)
+    out.log("warning: %d host threads share %d core%s (rank 0's CPU affinity): set-up, output and the cpu backend "
+            "run slower; start ranks with cores of their own (mpirun --bind-to none, or --map-by ...:PE=n)\n",
+            host.threads, host.cores, host.cores > 1 ? "s" : "");
   if (!a.restart.empty()) {
     out.resume(sim->step_count());
     out.log("restarted from %s at step %lld\n", a.restart.c_str(), sim->step_count());
