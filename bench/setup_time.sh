@@ -21,6 +21,6 @@ mpiexec --allow-run-as-root --oversubscribe --bind-to none -n "$ranks" \
   /usr/bin/time -f "rank peak resident memory %M kB" \
   "$build/src/grainstorm" run "$scene" --backend "$backend" --steps 1 --overwrite > "$log" 2>&1 &
 while kill -0 $! 2>/dev/null && ! grep -q "host threads" "$log"; do sleep 0.2; done
-pkill -KILL -f "grainstorm run $scene" || true
+pkill -KILL -f "^$build/src/grainstorm run $scene" || true  # not mpiexec or time, which report
 wait || true
 grep -E "particles,|set up in|host threads|peak resident|rror" "$log"
