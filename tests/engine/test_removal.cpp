@@ -137,32 +137,36 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
-// A frictional bed settling on a floor, beside a column that falls into an
-// outlet: once the column is gone the bed's particles, their forces and
+// A frictional bed settling against a wall, beside a column that falls into
+// an outlet: once the column is gone the bed's particles, their forces and
 // their contact history are bitwise those of the bed alone. The compaction
 // must carry every field and history slot of the staying particles, keep
 // their sums in canonical order, and leave nothing of the removed ones.
+// Gravity is along -x, so that the column and the bed share heights and
+// stand interleaved in memory (cells are ordered by z first).
 TEST_P(RemovalTest, TheStayingParticlesAreThoseOfARunWithoutTheRemovedOnes) {
   SceneSpec bed = test::base_scene(2500, 2000, 0.5, 0.5);
   bed.effects = kFriction | kRollingResistance;
   bed.pairs[0].rolling_friction = 0.1;
-  bed.gravity = Vec3d(0, 0, -kG);
+  bed.gravity = Vec3d(-kG, 0, 0);
   bed.time_step = 1.5e-5;  // 0.09 of the particle-particle contact time
-  bed.walls.push_back(test::plane_wall(Vec3d(0, 0, -0.015), Vec3d(0, 0, 1)));
+  bed.walls.push_back(test::plane_wall(Vec3d(-0.015, 0, 0), Vec3d(1, 0, 0)));
   bed.wall_names.push_back("floor");
-  ParticleId id = 0;
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j)
-      for (int k = 0; k < 3; ++k)
-        bed.particles.push_back(test::particle(
-            id++, kRadius, Vec3d(-0.016 + 0.0021 * i + 0.0001 * k, -0.004 + 0.0021 * j, -0.0139 + 0.0021 * k)));
+  // The column's ids come first, so that in memory it starts before the bed.
   SceneSpec with_column = bed;
+  ParticleId id = 0;
   for (int k = 0; k < 6; ++k)  // falling at 1 m/s into the outlet, one after another
-    with_column.particles.push_back(test::particle(id++, kRadius, Vec3d(0.01, 0.003 * (k % 2), 0.002 + 0.0025 * k),
-                                                   Vec3d(0, 0, -1)));
+    with_column.particles.push_back(test::particle(
+        id++, kRadius, Vec3d(0.002 + 0.0025 * k, 0.01 + 0.003 * (k % 2), -0.015 + 0.0021 * k), Vec3d(-1, 0, 0)));
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < 4; ++k)
+        bed.particles.push_back(test::particle(
+            id++, kRadius, Vec3d(-0.0139 + 0.0021 * i, -0.004 + 0.0021 * j + 0.0001 * i, -0.016 + 0.0021 * k)));
+  with_column.particles.insert(with_column.particles.end(), bed.particles.begin(), bed.particles.end());
   OutletRegion box;
-  box.min = Vec3d(0.005, -0.01, -0.01);
-  box.max = Vec3d(0.015, 0.01, -0.005);
+  box.min = Vec3d(-0.01, 0.005, -0.02);
+  box.max = Vec3d(-0.005, 0.018, 0.02);
   with_column.outlets.push_back({"chute", box});
 
   constexpr long long kSteps = 2000;  // the column is gone after ~1250
