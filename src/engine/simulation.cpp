@@ -75,7 +75,7 @@ void Simulation::set_up(const SceneSpec& scene) {
   skin_ = kernels_->neighbours().uses_verlet_list() ? options_.verlet_skin * diameter : 0.0;
   grid_ = make_cell_grid(scene.domain_min, scene.domain_max, diameter + skin_);
   walls_ = scene.walls;
-  removes_ = !scene.outlets.empty() || scene.open_faces != 0;
+  removes_ = scene.has_exits();
   if (removes_)
     kernels_->removal().set_exits(exits_of(scene.outlets, scene.open_faces), scene.domain_min, scene.domain_max);
   for (const Wall& w : walls_) walls_move_ = walls_move_ || norm2(w.velocity) > 0 || norm2(w.angular_velocity) > 0;

@@ -133,7 +133,6 @@ class Progress {
     const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
     return elapsed > 0 ? particle_steps_ / elapsed : 0;
   }
-  long long particles() const { return particles_; }
 
  private:
   long long first_, last_step_, total_, particles_;
@@ -237,7 +236,7 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
     out.log("step %lld: particles marked %d / %d by their side of the plane\n", step, int(scene.marking->front),
             int(scene.marking->back));
   };
-  const bool removes = !scene.outlets.empty() || scene.open_faces != 0;
+  const bool removes = scene.has_exits();
   const auto t0 = Clock::now();
   auto last_checkpoint = t0;
   const long long first_step = sim.step_count();  // after a restart, the rate counts this run's steps only

@@ -44,7 +44,7 @@ RunOutput::RunOutput(const SceneSpec& scene, const std::string& directory, Trans
     mixing_log_ = std::make_unique<MixingLog>(
         *scene.mixing, log_path.is_absolute() ? log_path.string() : directory_ + "/" + log_path.string());
   }
-  if (!scene.outlets.empty() || scene.open_faces != 0) {
+  if (scene.has_exits()) {
     std::vector<std::string> materials;
     for (const MaterialSpec& m : scene.materials) materials.push_back(m.name);
     removal_log_ = std::make_unique<RemovalLog>(directory_ + "/removed.csv",
@@ -160,7 +160,7 @@ void RunOutput::mixing(const Simulation& sim) {
 }
 
 void RunOutput::removals(Simulation& sim) {
-  if (scene_.outlets.empty() && scene_.open_faces == 0) return;
+  if (!scene_.has_exits()) return;
   const std::vector<RemovedParticle> mine = sim.take_removed();
   Bytes local(mine.size() * sizeof(RemovedParticle));
   if (!mine.empty()) std::memcpy(local.data(), mine.data(), local.size());

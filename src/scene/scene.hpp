@@ -74,6 +74,7 @@ struct SceneSettings {
   std::optional<MarkingSpec> marking;  // none: markers stay as created
   std::vector<OutletSpec> outlets;   // regions where particles are removed (scene/outlets.hpp)
   unsigned open_faces = 0;           // domain faces particles leave through, removed (scene/outlets.hpp)
+  bool has_exits() const { return !outlets.empty() || open_faces != 0; }  // particles can leave the run
   // "<file>:<line>: <key path>: <what>" for each value the scene sets that the
   // run ignores (a parameter of an effect that is off); check and run print them.
   std::vector<std::string> warnings;
