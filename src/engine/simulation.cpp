@@ -77,6 +77,9 @@ void Simulation::set_up(const SceneSpec& scene) {
   skin_ = kernels_->neighbours().uses_verlet_list() ? options_.verlet_skin * diameter : 0.0;
   grid_ = make_cell_grid(scene.domain_min, scene.domain_max, diameter + skin_);
   walls_ = scene.walls;
+  removes_ = scene.has_exits();
+  if (removes_)
+    kernels_->removal().set_exits(exits_of(scene.outlets, scene.open_faces), scene.domain_min, scene.domain_max);
   for (const Wall& w : walls_) walls_move_ = walls_move_ || norm2(w.velocity) > 0 || norm2(w.angular_velocity) > 0;
   meshes_ = scene.meshes;
   if (meshes_.n_triangles() > 0) {
@@ -210,7 +213,7 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
   const auto start = Clock::now();
   const double dt = scene_.time_step;
   IntegrationParams p{dt, scene_.gravity, scene_.domain_min, scene_.domain_max, 0.5 * grid_.cell_size, 0,
-                      fp32_state(scene_.precision)};
+                      fp32_state(scene_.precision), scene_.open_faces};
   for (long long s = 0; s < steps; ++s) {
     // A timed step starts with an idle device, so it is charged only its own work.
     if (step_ % kTimedEvery == 0) kernels_->synchronize();
@@ -220,6 +223,8 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
     kernels_->integration().kick_drift(store_, p);
     if (walls_move_) move_walls(time_ + dt);
     if (meshes_move_) pose_meshes(time_ + dt);
+    // Removed where the drift took them, before they can migrate or touch anything.
+    if (removes_) kernels_->removal().remove(store_, p.step, removed_);
     timings_.integrate += phase_seconds(t0);
     if (exchange_) step_particles_between_ranks();
 

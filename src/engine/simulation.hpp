@@ -6,6 +6,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/particle_snapshot.hpp"
@@ -47,6 +48,9 @@ class Simulation {
   // Throws SimulationFault when a kernel has reported a fault since the last
   // check. Collective with several ranks (the fault of the lowest failing rank).
   void check_fault();
+  // The particles this rank removed at the scene's exits since the last call,
+  // in the order they were found (by step, then in store order).
+  std::vector<RemovedParticle> take_removed() { return std::exchange(removed_, {}); }
   // Sets every owned particle's marker by its side of the plane, now.
   void mark(const MarkingSpec& m) { kernels_->mark_by_plane(store_, m); }
   double time() const { return time_; }
@@ -108,6 +112,8 @@ class Simulation {
   StepTimings timings_;  // sampled: the timed steps' phases
   double run_seconds_ = 0;  // all of run(), measured
   SetupTimings setup_timings_;
+  bool removes_ = false;  // the scene has exits (outlets or open faces)
+  std::vector<RemovedParticle> removed_;  // since the last take_removed()
 };
 
 }  // namespace gs

@@ -8,6 +8,7 @@
 
 #include "core/fault.hpp"
 #include "core/particle_fields.hpp"
+#include "core/domain_faces.hpp"
 
 namespace gs {
 
@@ -18,6 +19,9 @@ struct IntegrationParams {
   double max_displacement;  // per step; half a cell
   long long step;
   bool fp32_state;  // precision fp32_full: the state is kept on the fp32 grid
+  // Domain faces a particle may leave through (bits of core/domain_faces.hpp):
+  // beyond them it is removed after the drift, not a fault.
+  unsigned open_faces = 0;
 };
 
 // The nearest fp32 values: what a code that stores the state in fp32 keeps.
@@ -78,8 +82,7 @@ struct KickDrift {
     if (!(std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(v.x) &&
           std::isfinite(v.y) && std::isfinite(v.z))) {
       report_fault(fault, kFaultNotFinite, id[i], p.step);
-    } else if (x.x < p.domain_lo.x || x.y < p.domain_lo.y || x.z < p.domain_lo.z || x.x > p.domain_hi.x ||
-               x.y > p.domain_hi.y || x.z > p.domain_hi.z) {
+    } else if ((faces_beyond(x, p.domain_lo, p.domain_hi) & ~p.open_faces) != 0) {
       report_fault(fault, kFaultLeftDomain, id[i], p.step);
     } else if (norm2(step) > p.max_displacement * p.max_displacement) {
       report_fault(fault, kFaultTooFast, id[i], p.step);

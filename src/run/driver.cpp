@@ -101,27 +101,44 @@ long long steps_per(double interval, double dt) {
 
 
 // Progress to stderr at most every two seconds: step, time, rate, ETA. Only
-// rank 0 prints it (every rank would repeat the same line).
+// rank 0 prints it (every rank would repeat the same line). The rate counts
+// the particles of each stretch of steps, as they change when particles are
+// removed.
 class Progress {
  public:
   Progress(long long first, long long total, long long particles, bool prints)
-      : first_(first), total_(total), particles_(particles), prints_(prints) {}
-  void update(const Simulation& sim) {
+      : first_(first), last_step_(first), total_(total), particles_(particles), prints_(prints) {}
+  // After the steps up to sim's, which ran with the count of the previous
+  // call; `particles` is the count now.
+  void update(const Simulation& sim, long long particles) {
+    particle_steps_ += double(sim.step_count() - last_step_) * double(particles_);
+    last_step_ = sim.step_count();
+    const bool changed = particles != particles_;
+    particles_ = particles;
     if (!prints_) return;
     const auto now = Clock::now();
     if (std::chrono::duration<double>(now - last_).count() < 2.0 && sim.step_count() < total_) return;
     last_ = now;
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     const double done = double(sim.step_count() - first_);
-    const double rate = elapsed > 0 ? done * double(particles_) / elapsed : 0;
     const double eta = done > 0 ? elapsed * double(total_ - sim.step_count()) / done : 0;
-    std::fprintf(stderr, "step %lld/%lld  t = %.6g s  %.3g particle-steps/s  ETA %.0f s\n", sim.step_count(), total_,
-                 sim.time(), rate, eta);
+    std::fprintf(stderr, "step %lld/%lld  t = %.6g s  %.3g particle-steps/s  ETA %.0f s", sim.step_count(), total_,
+                 sim.time(), rate(), eta);
+    if (changed || varies_) std::fprintf(stderr, "  %lld particles", particles_);
+    varies_ = varies_ || changed;
+    std::fprintf(stderr, "\n");
+  }
+  // Particle-steps per second of wall time so far.
+  double rate() const {
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    return elapsed > 0 ? particle_steps_ / elapsed : 0;
   }
 
  private:
-  long long first_, total_, particles_;
+  long long first_, last_step_, total_, particles_;
   bool prints_;
+  bool varies_ = false;  // the count has changed: every line shows it
+  double particle_steps_ = 0;
   Clock::time_point start_ = Clock::now(), last_ = start_;
 };
 
@@ -231,6 +248,7 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
     out.log("step %lld: particles marked %d / %d by their side of the plane\n", step, int(scene.marking->front),
             int(scene.marking->back));
   };
+  const bool removes = scene.has_exits();
   const auto t0 = Clock::now();
   auto last_checkpoint = t0;
   const long long first_step = sim.step_count();  // after a restart, the rate counts this run's steps only
@@ -247,8 +265,12 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
     if (mixing.every > 0) chunk = std::min(chunk, mixing.next_after(step) - step);
     if (mark_step > step) chunk = std::min(chunk, mark_step - step);
     sim.run(chunk, [&] { return stop_signal.after_step(); });
+    if (removes) {  // before any output, so that a checkpoint's removals are in removed.csv
+      out.removals(sim);
+      particles = exchange ? exchange->total(sim.particle_count()) : sim.particle_count();
+    }
     mark_if_due(sim.step_count());
-    progress.update(sim);
+    progress.update(sim, particles);
     const long long now = sim.step_count();
     if ((every > 0 && now % every == 0) || now == total) out.snapshot(sim);
     if (mixing.due(now)) out.mixing(sim);
@@ -268,8 +290,8 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
     }
   }
   const double wall = seconds_since(t0);
-  out.log("done: %lld steps, t = %.6g s, %.3g particle-steps/s\n", total, sim.time(),
-          wall > 0 ? double(sim.step_count() - first_step) * double(particles) / wall : 0.0);
+  out.log("done: %lld steps, t = %.6g s, %.3g particle-steps/s\n", total, sim.time(), progress.rate());
+  if (removes) out.log("particles at the end: %lld\n", particles);
   if (exchange) out.log("decomposition at the end: %s\n", exchange->describe().c_str());
   const StepTimings t = sim.timings();
   out.log("time per phase (s, rank 0): integration %.3f, neighbour build %.3f, contact forces %.3f, exchange %.3f, "
@@ -375,6 +397,7 @@ int run_scene(const RunRequest& request, Transport& transport) {
     // Every rank has the same fault (agreed in check_fault): log it and keep
     // the state it was found in.
     out.log("run stopped by a fault: %s\n", fault.what());
+    out.removals(*sim);  // what left before it
     out.fault_snapshot(*sim);
     throw;
   } catch (const RankFailure& failure) {  // an output rank 0 could not write

@@ -24,7 +24,7 @@ std::string mixing_log_name(const SceneSpec& scene) {
 }
 
 bool is_run_file(const std::string& name) {
-  static const std::regex fixed(R"((run\.log|timeseries\.csv|particles\.xdmf|meshes\.xdmf)(\.tmp[0-9]*)?)");
+  static const std::regex fixed(R"((run\.log|timeseries\.csv|removed\.csv|particles\.xdmf|meshes\.xdmf)(\.tmp[0-9]*)?)");
   return std::regex_match(name, kStepFile) || std::regex_match(name, fixed);
 }
 
@@ -96,6 +96,7 @@ void prepare_output_directory(const std::string& directory, OutputDirectoryUse u
     return;
   }
   keep_rows_up_to(fs::path(directory) / "timeseries.csv", 0, step);
+  keep_rows_up_to(fs::path(directory) / "removed.csv", 1, step);
   if (!mixing.empty()) keep_rows_up_to(fs::path(directory) / mixing, 1, step);
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "scene/mixing_spec.hpp"
+#include "scene/outlets.hpp"
 #include "scene/particle_sets.hpp"
 #include "core/materials.hpp"
 #include "core/types.hpp"
@@ -71,6 +72,9 @@ struct SceneSettings {
   DecompositionSpec decomposition;
   std::optional<MixingSpec> mixing;  // analysis.mixing (docs/MIXING.md); none: no mixing analysis
   std::optional<MarkingSpec> marking;  // none: markers stay as created
+  std::vector<OutletSpec> outlets;   // regions where particles are removed (scene/outlets.hpp)
+  unsigned open_faces = 0;           // domain faces particles leave through, removed (scene/outlets.hpp)
+  bool has_exits() const { return !outlets.empty() || open_faces != 0; }  // particles can leave the run
   // "<file>:<line>: <key path>: <what>" for each value the scene sets that the
   // run ignores (a parameter of an effect that is off); check and run print them.
   std::vector<std::string> warnings;

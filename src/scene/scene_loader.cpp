@@ -23,7 +23,7 @@ namespace {
 const std::vector<std::string> kTopKeys = {"domain",    "gravity", "contact_model", "precision",     "effects",
                                            "materials", "pairs",   "particles",     "walls",         "time_step",
                                            "duration",  "output",  "contact_slots", "decomposition",
-                                           "analysis",  "marking"};
+                                           "analysis",  "marking",       "outlets"};
 
 void parse_decomposition(const Map& m, SceneSpec& s) {
   DecompositionSpec& d = s.decomposition;
@@ -42,7 +42,9 @@ void parse_decomposition(const Map& m, SceneSpec& s) {
 }
 
 void parse_globals(const Map& top, SceneSpec& s) {
-  box_corners(Map(top.get("domain"), {"min", "max"}), s.domain_min, s.domain_max);
+  const Map domain(top.get("domain"), {"min", "max", "open"});
+  box_corners(domain, s.domain_min, s.domain_max);
+  parse_open_faces(domain, s);
   s.gravity = vec3_or(top, "gravity", Vec3d());
   if (top.has("contact_model"))
     s.model = contact_model_named(choice(top.get("contact_model"), contact_model_names()));
@@ -248,6 +250,7 @@ SceneSpec parse_scene(const std::string& yaml_text, const std::string& source) {
   if (const std::string problem = fp32_state_problem(s); !problem.empty()) fail(top.get("precision"), problem);
   parse_analysis(top, s);
   parse_marking(top, s);
+  parse_outlets(top, s);
   return s;
 }
 

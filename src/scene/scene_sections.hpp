@@ -25,4 +25,9 @@ void parse_analysis(const Map& top, SceneSpec& s);
 // `marking:` -> s.marking (needs the duration); scene_marking.cpp.
 void parse_marking(const Map& top, SceneSpec& s);
 
+// `domain.open` -> s.open_faces; `outlets:` -> s.outlets (needs the domain);
+// scene_outlets.cpp.
+void parse_open_faces(const Map& domain, SceneSpec& s);
+void parse_outlets(const Map& top, SceneSpec& s);
+
 }  // namespace gs::scene_yaml

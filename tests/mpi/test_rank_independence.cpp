@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <tuple>
 
 #include "comm/device_link.hpp"
 #include "comm/domain_exchange.hpp"
@@ -74,6 +75,32 @@ ContactMap gathered_contacts(const Simulation& sim) {
   return contacts_of(ids, all);
 }
 
+std::vector<RemovedParticle> by_step_and_id(std::vector<RemovedParticle> r) {
+  std::sort(r.begin(), r.end(), [](const auto& a, const auto& b) { return std::tie(a.step, a.id) < std::tie(b.step, b.id); });
+  return r;
+}
+
+// Every rank's removed particles on rank 0, by step and id.
+std::vector<RemovedParticle> gathered_removed(Simulation& sim) {
+  const std::vector<RemovedParticle> mine = sim.take_removed();
+  Bytes b(mine.size() * sizeof(RemovedParticle));
+  if (!mine.empty()) std::memcpy(b.data(), mine.data(), b.size());
+  std::vector<RemovedParticle> all;
+  for (const Bytes& part : world().gather(b)) {
+    const std::size_t at = all.size();
+    all.resize(at + part.size() / sizeof(RemovedParticle));
+    if (!part.empty()) std::memcpy(all.data() + at, part.data(), part.size());
+  }
+  return by_step_and_id(all);
+}
+
+bool same_removals(const std::vector<RemovedParticle>& a, const std::vector<RemovedParticle>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (a[k].step != b[k].step || a[k].id != b[k].id || a[k].exit != b[k].exit || a[k].mass != b[k].mass) return false;
+  return true;
+}
+
 // GPU ranks, each on a GPU of its own, exchanging over NCCL: on the device
 // machine's multi-GPU kinds, with GS_TEST_BACKENDS naming cuda. Collective.
 bool gpu_ranks_ready() {
@@ -95,12 +122,19 @@ void expect_rank_independent(const SceneSpec& scene, long long steps, RunOptions
   many.run(steps);
   const ParticleSnapshot all = gather_snapshot(world(), many.snapshot());
   const ContactMap many_contacts = gathered_contacts(many);
+  const std::vector<RemovedParticle> removed = gathered_removed(many);
   if (world().rank() != 0) return;
   const ParticleSnapshot ref = one.snapshot();
+  const std::vector<RemovedParticle> ref_removed = by_step_and_id(one.take_removed());
   // The one-rank state's digest, for comparing builds (a refactor must not change it).
   std::printf("[ digest   ] %s: 0x%016" PRIx64 "\n", ::testing::UnitTest::GetInstance()->current_test_info()->name(),
               state_digest(ref, one.history()));
-  ASSERT_EQ(all.size(), scene.particles.size()) << "particles lost or duplicated";
+  ASSERT_EQ(all.size() + removed.size(), scene.particles.size()) << "particles lost or duplicated";
+  EXPECT_TRUE(same_removals(removed, ref_removed)) << removed.size() << " removed on " << world().size()
+                                                   << " ranks, " << ref_removed.size() << " on one";
+  if (scene.has_exits()) {
+    EXPECT_GT(ref_removed.size(), 0u) << "nothing was removed";
+  }
   EXPECT_TRUE(same_bits(all.id, ref.id));
   EXPECT_TRUE(same_bits(all.position, ref.position)) << exchange->describe();
   EXPECT_TRUE(same_bits(all.velocity, ref.velocity));
@@ -185,6 +219,30 @@ constexpr long long kStreamingSteps = 380;  // 1.9 ms: the second rows of each s
 
 TEST(RankIndependence, StreamsThroughSlabBoundaryBothWays) {
   expect_rank_independent(streaming_scene(), kStreamingSteps);
+}
+
+// The same two lattices, faster, in a domain open on every side: removed at
+// the faces as they stream out (or are scattered out), on whichever rank.
+TEST(RankIndependence, StreamsOutThroughOpenFaces) {
+  SceneSpec s = streaming_scene();
+  s.domain_min.x = -0.014;
+  s.domain_max.x = 0.014;
+  s.open_faces = 63;  // all six
+  for (ParticleInit& p : s.particles) p.velocity.x *= 3;
+  expect_rank_independent(s, 700);  // 3.5 ms: scattered ones have left sideways, the rest still cross
+}
+
+// Settling into a drain in a corner of the floor: removed there on the
+// lowest slab's rank, while the bed re-balances.
+TEST(RankIndependence, SettlesIntoACornerDrain) {
+  SceneSpec s = settling_scene(DecompositionMethod::slabs);
+  OutletRegion drain;
+  drain.min = {0, 0, 0};
+  drain.max = {0.008, 0.008, 0.004};
+  s.outlets.push_back({"drain", drain});
+  RunOptions o;
+  o.rebalance_interval = 200;
+  expect_rank_independent(s, 1500, o);
 }
 
 // The hysteretic normal law keeps each contact's peak overlap in its history
