@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "io/checkpoint.hpp"
+#include "io/checkpoint_insertion.hpp"
 #include "io/h5_io.hpp"
 #include "io/h5_walls.hpp"
 
@@ -105,6 +106,7 @@ Checkpoint read_contents(const h5::File& f) {
   const std::vector<hsize_t> cuts = h5::dims_of(f, "decomposition/cuts");
   if (cuts.size() != 1) refuse(f.path(), "decomposition/cuts is not one-dimensional");
   c.decomposition_cuts = h5::read_array<double>(f, "decomposition/cuts", cuts);
+  c.insertion = read_insertion(f);
   return c;
 }
 
