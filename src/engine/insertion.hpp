@@ -47,7 +47,7 @@ void mark_blocked(const InletBatch& batch, const std::vector<Vec3d>& centre, con
 // particle takes its first candidate that no rank marked and that overlaps no
 // wall, no mesh and no particle accepted before it in this batch. Stops at
 // the first particle without such a candidate (the rest stay owed).
-// `accepted[k]` keeps the position of pending particle k for k < the count.
+// `meshes` must hold their vertices in the current pose.
 std::vector<ParticleInit> accept_candidates(const InletBatch& batch, const std::vector<double>& blocked,
                                             const std::vector<Wall>& walls, const MeshSet& meshes);
 
