@@ -55,8 +55,27 @@ bool clear_of_walls(const Vec3d& c, double r, const std::vector<Wall>& walls) {
   return true;
 }
 
-bool clear_of_meshes(const Vec3d& c, double r, const MeshSet& m) {
+// Triangles whose bounding box comes within `reach` of the box [lo, hi]: the
+// only ones a candidate in the box can touch.
+std::vector<std::int32_t> triangles_near(const MeshSet& m, const Vec3d& lo, const Vec3d& hi, double reach) {
+  std::vector<std::int32_t> near;
   for (std::int32_t t = 0; t < m.n_triangles(); ++t) {
+    const MeshCorners& k = m.corners[std::size_t(t)];
+    Vec3d a = m.vertex[std::size_t(k.v[0])], b = a;
+    for (int c = 1; c < 3; ++c) {
+      const Vec3d& v = m.vertex[std::size_t(k.v[c])];
+      a = Vec3d(std::min(a.x, v.x), std::min(a.y, v.y), std::min(a.z, v.z));
+      b = Vec3d(std::max(b.x, v.x), std::max(b.y, v.y), std::max(b.z, v.z));
+    }
+    if (a.x <= hi.x + reach && b.x >= lo.x - reach && a.y <= hi.y + reach && b.y >= lo.y - reach &&
+        a.z <= hi.z + reach && b.z >= lo.z - reach)
+      near.push_back(t);
+  }
+  return near;
+}
+
+bool clear_of_meshes(const Vec3d& c, double r, const MeshSet& m, const std::vector<std::int32_t>& near) {
+  for (std::int32_t t : near) {
     const MeshCorners& k = m.corners[std::size_t(t)];
     const ClosestPoint q = closest_point_on_triangle(c, m.vertex[std::size_t(k.v[0])], m.vertex[std::size_t(k.v[1])],
                                                      m.vertex[std::size_t(k.v[2])]);
@@ -159,6 +178,7 @@ std::vector<ParticleInit> accept_candidates(const InletBatch& b, const std::vect
   for (const ParticleInit& p : b.pending) r_max = std::max(r_max, p.radius);
   const Vec3d pad(r_max, r_max, r_max);
   SphereGrid batch(lo - pad, hi + pad, 2 * r_max, b.pending.size());
+  const std::vector<std::int32_t> near = triangles_near(meshes, lo, hi, r_max);
   for (std::size_t k = 0; k < b.pending.size(); ++k) {
     const double r = b.pending[k].radius;
     bool placed = false;
@@ -166,7 +186,7 @@ std::vector<ParticleInit> accept_candidates(const InletBatch& b, const std::vect
       const std::size_t c = k * std::size_t(b.attempts) + std::size_t(a);
       const Vec3d& x = b.candidates[c];
       if (blocked[c] > 0 || batch.overlapping(x, r, 0.0) >= 0 || !clear_of_walls(x, r, walls) ||
-          !clear_of_meshes(x, r, meshes))
+          !clear_of_meshes(x, r, meshes, near))
         continue;
       ParticleInit p = b.pending[k];
       p.position = x;

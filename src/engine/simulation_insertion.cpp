@@ -28,6 +28,7 @@ void Simulation::insert_due() {
   std::vector<Vec3d> centre;
   std::vector<float> radius;
   bool copied = false;
+  MeshSet posed;  // the meshes' vertices in their pose now, once per step with a batch
   for (std::size_t i = 0; i < scene_.inlets.size(); ++i) {
     const InletSpec& in = scene_.inlets[i];
     if (!batch_due(in, step_)) continue;
@@ -37,12 +38,15 @@ void Simulation::insert_due() {
     // Checked where they will be stored: fp32 state keeps positions on the fp32 grid.
     if (fp32_state(scene_.precision))
       for (Vec3d& c : batch.candidates) c = on_fp32_grid(c);
-    if (!copied) owned_spheres(store_, centre, radius);
+    if (!copied) {
+      owned_spheres(store_, centre, radius);
+      if (meshes_.n_triangles() > 0) posed = meshes();
+    }
     copied = true;
     std::vector<double> blocked;
     mark_blocked(batch, centre, radius, blocked);
     if (exchange_) exchange_->sum(blocked);
-    const std::vector<ParticleInit> accepted = accept_candidates(batch, blocked, walls_, meshes_);
+    const std::vector<ParticleInit> accepted = accept_candidates(batch, blocked, walls_, posed);
     InsertionRecord r{step_, time_, int(i), accepted.size(), 0.0, batch.pending.size() - accepted.size(), {}};
     for (std::size_t k = 0; k < accepted.size(); ++k) {
       ParticleInit p = accepted[k];
