@@ -87,6 +87,32 @@ TEST_P(Insertion, CountRateIsExactAtEveryBatch) {
   }
 }
 
+// Start and stop bound the time that owes particles: floor(rate * (min(t,
+// stop) - start)) in all. Each new particle leaves with the inlet's velocity
+// plus a spread uniform in [-0.05, 0.05] per component.
+TEST_P(Insertion, StartStopAndVelocitySpread) {
+  SceneSpec s = box_with_inlet(0);
+  s.inlets[0].start = 0.0005;
+  s.inlets[0].stop = 0.0017;
+  Simulation sim(s, options());
+  double spread_seen = 0;
+  for (int batch = 1; batch <= 25; ++batch) {
+    sim.run(10);
+    const ParticleSnapshot snap = sim.snapshot();
+    const double owed_time = std::max(0.0, std::min(sim.time(), 0.0017) - 0.0005);
+    ASSERT_EQ(snap.size(), std::size_t(std::floor(20000 * owed_time * (1 + 1e-12)))) << "at t = " << sim.time();
+    for (std::size_t i = 0; i < snap.size(); ++i) {
+      const Vec3d dv = snap.velocity[i] - Vec3d(0, 0, -0.2);
+      for (double c : {dv.x, dv.y, dv.z}) {
+        ASSERT_LE(std::abs(c), 0.05);
+        spread_seen = std::max(spread_seen, std::abs(c));
+      }
+    }
+  }
+  EXPECT_EQ(sim.snapshot().size(), 24u);  // 20000 / s for 1.2 ms
+  EXPECT_GT(spread_seen, 0.04);
+}
+
 // A mass rate: the inserted mass reaches rate * t and passes it by less than
 // one particle; the mass recorded equals the particles' stored masses.
 TEST_P(Insertion, MassRateWithinOneParticle) {
