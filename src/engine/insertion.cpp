@@ -103,10 +103,12 @@ InletBatch inlet_batch(const InletSpec& in, std::size_t which, const InletState&
   const MaterialSpec& material = materials[std::size_t(in.tmpl.material)];
   std::uint64_t count = state.inserted;
   double mass = state.mass;
-  // A count is owed particle by particle; a mass until the particles owed reach it.
+  // A count is owed particle by particle; a mass until the particles owed
+  // reach it. `due` counts what the rate counts, or the total without a rate.
+  const InletSpec::Amount due_of = in.rate > 0 ? in.rate_of : in.total_of;
   auto owes = [&] {
     if (total_reached(in, count, mass)) return false;
-    return in.rate_of == InletSpec::Amount::count && in.rate > 0 ? double(count) < due : mass < due;
+    return due_of == InletSpec::Amount::count ? double(count) < due : mass < due;
   };
   while (owes()) {
     const ParticleInit p = sequence_particle(in, which, count);

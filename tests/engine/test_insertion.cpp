@@ -143,6 +143,26 @@ TEST_P(Insertion, TotalStopsTheInlet) {
   EXPECT_EQ(sim.insertion().inlets[0].inserted, 123u);
 }
 
+// Without a rate the whole total is owed at once: a count total at the first
+// batch, a mass total by less than one particle beyond it.
+TEST_P(Insertion, TotalWithoutRateAtFirstBatch) {
+  SceneSpec s = box_with_inlet(9.81);
+  s.inlets[0].rate = 0;
+  s.inlets[0].total = 40;
+  Simulation by_count(s, options());
+  by_count.run(10);
+  EXPECT_EQ(by_count.snapshot().size(), 40u);
+  s.inlets[0].total_of = InletSpec::Amount::mass;
+  s.inlets[0].total = 0.0001;  // kg: some 40 particles
+  Simulation by_mass(s, options());
+  by_mass.run(10);
+  const double mass = by_mass.insertion().inlets[0].mass;
+  EXPECT_GE(mass, 0.0001);
+  EXPECT_LT(mass, 0.0001 + stored_sphere_mass(0.0008, 2500));
+  by_mass.run(100);
+  EXPECT_EQ(by_mass.insertion().inlets[0].mass, mass) << "the total is reached: nothing more";
+}
+
 // Inserted particles overlap nothing: not the particles already there (a
 // lattice at rest inside the inlet region, no gravity), not each other, not
 // the walls. Checked right after each batch over every pair.
