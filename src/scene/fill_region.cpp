@@ -102,10 +102,6 @@ double smallest_radius(const SizeSpec& size) {
   return r;
 }
 
-}  // namespace gs
-
-namespace gs {
-
 double mean_particle_volume(const SizeSpec& size) {
   const double k = 4.0 / 3.0 * M_PI;
   if (size.kind == SizeSpec::Kind::fixed) return k * size.radius_min * size.radius_min * size.radius_min;

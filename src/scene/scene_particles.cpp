@@ -228,8 +228,10 @@ void parse_particles(const Map& top, SceneSpec& s) {
     if (kind == "random_fill") add_random_fill(s, set);
     if (kind == "list") add_list(s, set, origins);
   });
-  // A scene with inlets may start empty (a silo being filled).
-  if (particle_count(s) == 0 && !top.has("inlets")) fail(list, "the scene has no particles");
+  if (particle_count(s) == 0) {
+    if (top.has("inlets")) return;  // a scene with inlets may start empty (a silo being filled)
+    fail(list, "the scene has no particles");
+  }
   check_packing(s, origins, sets == 1 && !any_list);
 }
 

@@ -81,6 +81,12 @@ TEST(InletsLoader, SiloInletParses) {
   EXPECT_EQ(smallest_radius(s), 0.001);
 }
 
+TEST(InletsLoader, EmptyParticleListWithInlets) {
+  const SceneSpec s = parse_scene(edit("inlets:", "particles: []\ninlets:"), "silo.yaml");
+  EXPECT_EQ(particle_count(s), 0u);
+  EXPECT_EQ(s.inlets.size(), 1u);
+}
+
 TEST(InletsLoader, RegionOutsideTheDomain) {
   expect_error(edit("radius: 0.04, length", "radius: 0.06, length"), 10, "inlets[0].region",
                "is not inside the domain");
