@@ -161,7 +161,7 @@ TEST(RankIndependence, PolydisperseFrictionalSettlingWithMetis) {
 // the ranks that own the accepted positions append them; the result is the
 // one-rank run's, ids included. Empty at first, then a stream that lands on
 // the bed across the slab boundaries.
-TEST(RankIndependence, InletFeedsBedAcrossSlabs) {
+SceneSpec inlet_scene() {
   SceneSpec s = frictional_box(0.02, 0.05);
   RandomFillSpec fill;
   fill.region.min = {0.0015, 0.0015, 0.0015};
@@ -186,8 +186,11 @@ TEST(RankIndependence, InletFeedsBedAcrossSlabs) {
   s.inlets.push_back(in);
   s.decomposition.axis = 0;
   s.time_step = 2e-5;
-  expect_rank_independent(s, 1000);  // some 1000 particles inserted
+  return s;
 }
+constexpr long long kInletSteps = 1000;  // some 1000 particles inserted
+
+TEST(RankIndependence, InletFeedsBedAcrossSlabs) { expect_rank_independent(inlet_scene(), kInletSteps); }
 
 // Two lattices flying into each other across the slab boundary (no gravity,
 // no walls): particles stream through the boundary in both directions,
@@ -340,6 +343,10 @@ TEST_F(RankIndependenceOnGpus, CompressedLatticeWithManyContacts) {
 
 TEST_F(RankIndependenceOnGpus, StreamsThroughSlabBoundaryBothWays) {
   expect_rank_independent(streaming_scene(), kStreamingSteps, options);
+}
+
+TEST_F(RankIndependenceOnGpus, InletFeedsBedAcrossSlabs) {
+  expect_rank_independent(inlet_scene(), kInletSteps, options);
 }
 
 }  // namespace
