@@ -47,6 +47,10 @@ void Simulation::insert_due() {
     mark_blocked(batch, centre, radius, blocked);
     if (exchange_) exchange_->sum(blocked);
     const std::vector<ParticleInit> accepted = accept_candidates(batch, blocked, walls_, posed);
+    // Every rank finds this alike, so all of them stop here together.
+    if (insertion_.next_id + accepted.size() > std::uint64_t(kMaxParticleId) + 1)
+      throw SimulationFault(in.key + " (inlet '" + in.name + "'): step " + std::to_string(step_) +
+                            ": the run has used every particle id (32-bit ids are never reused)");
     InsertionRecord r{step_, time_, int(i), accepted.size(), 0.0, batch.pending.size() - accepted.size(), {}};
     for (std::size_t k = 0; k < accepted.size(); ++k) {
       ParticleInit p = accepted[k];
