@@ -8,6 +8,8 @@
 #include "contact/contact_time.hpp"
 #include "contact/contact_models.hpp"
 #include "core/wall_clock.hpp"
+#include "engine/insertion.hpp"
+#include "engine/particle_init.hpp"
 #include "scene/particle_sources.hpp"
 #include "scene/position_resolution.hpp"
 #include "walls/wall_motion.hpp"
@@ -35,6 +37,7 @@ std::vector<T> permuted(const std::vector<T>& v, const std::vector<std::size_t>&
 Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::shared_ptr<RankExchange> exchange)
     : scene_(without_particles(scene)), options_(options), exchange_(std::move(exchange)) {
   set_up(scene);
+  insertion_ = initial_insertion_state(scene.inlets.size(), gs::particle_count(scene));
   move_walls(0.0);
   pose_meshes(0.0);
   // Each rank generates only the particles it owns (lattices site by site).
@@ -58,6 +61,7 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
                        const RestartState& restart)
     : scene_(without_particles(scene)), options_(options), exchange_(std::move(exchange)) {
   set_up(scene);
+  insertion_ = restart.insertion ? *restart.insertion : initial_insertion_state(scene.inlets.size(), gs::particle_count(scene));
   restore(restart);
   if (exchange_) exchange_->refresh_ghosts(store_, kernels_->movement());
   rebuild_neighbours();
@@ -136,10 +140,7 @@ void Simulation::restore(const RestartState& r) {
 void Simulation::upload(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep) {
   constexpr std::size_t kBlock = std::size_t(1) << 22;
   ParticleRecords host;
-  const std::vector<MaterialSpec>& materials = scene_.materials;
-  // fp32 state: positions and velocities start on the fp32 grid they live on.
-  const bool fp32 = fp32_state(scene_.precision);
-  auto state = [fp32](const Vec3d& v) { return fp32 ? on_fp32_grid(v) : v; };
+  const bool fp32 = fp32_state(scene_.precision);  // positions and velocities start on the fp32 grid they live on
   for_each_selected_block(
       scene, keep, kBlock,
       [&](std::size_t n) {
@@ -148,19 +149,7 @@ void Simulation::upload(const SceneSpec& scene, const std::function<bool(const V
         const std::size_t held = std::min(n, kBlock);
         for_each_particle_field(host, [held](const char*, auto& field) { field.resize(held); });
       },
-      [&](std::size_t k, const ParticleInit& p) {
-        const double m = sphere_mass(p.radius, materials[std::size_t(p.material)].density);
-        host.id[k] = p.id;
-        host.material[k] = std::uint8_t(p.material);
-        host.marker[k] = p.marker;
-        host.radius[k] = float(p.radius);
-        host.mass[k] = float(m);
-        host.inertia[k] = float(0.4 * m * p.radius * p.radius);
-        host.position[k] = state(p.position);
-        host.velocity[k] = state(p.velocity);
-        host.angular_velocity[k] = state(p.angular_velocity);
-        host.orientation[k] = Quaternion{1, 0, 0, 0};
-      },
+      [&](std::size_t k, const ParticleInit& p) { set_particle(host, k, p, scene_.materials, fp32); },
       [&](std::size_t first, std::size_t count) {
         for_each_particle_field(store_, host, [first, count](const char*, auto& field, const auto& from) {
           field.from_host(from.data(), count, first);
@@ -258,6 +247,7 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
     timings_.integrate += phase_seconds(t0);
     ++step_;
     time_ = double(step_) * dt;
+    if (!scene_.inlets.empty()) insert_due();
     if (options_.fault_check_interval > 0 && step_ % options_.fault_check_interval == 0) check_fault();
     if (stop_after_step && stop_after_step()) break;
   }

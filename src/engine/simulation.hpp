@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/insertion_state.hpp"
 #include "core/particle_snapshot.hpp"
 #include "engine/rank_exchange.hpp"
 #include "engine/step_kernels.hpp"
@@ -83,6 +84,10 @@ class Simulation {
     double first_forces = 0;  // the first neighbour search and force computation
   };
   const SetupTimings& setup_timings() const { return setup_timings_; }
+  // Where the inlets' insertion stands (checkpoints keep it), and the batches
+  // inserted since the last call (simulation_insertion.cpp).
+  const InsertionState& insertion() const { return insertion_; }
+  std::vector<InsertionRecord> take_insertion_records() { return std::exchange(insertion_records_, {}); }
 
  private:
   void set_up(const SceneSpec& scene);
@@ -91,6 +96,8 @@ class Simulation {
   void move_walls(double t);
   void pose_meshes(double t);
   void rebuild_neighbours();
+  void insert_due();
+  void append_inserted(const std::vector<ParticleInit>& inserted);
   void step_particles_between_ranks();
   double phase_seconds(std::chrono::steady_clock::time_point start) const;
   static constexpr long long kTimedEvery = 16;  // steps between timed ones
@@ -114,6 +121,8 @@ class Simulation {
   SetupTimings setup_timings_;
   bool removes_ = false;  // the scene has exits (outlets or open faces)
   std::vector<RemovedParticle> removed_;  // since the last take_removed()
+  InsertionState insertion_;
+  std::vector<InsertionRecord> insertion_records_;
 };
 
 }  // namespace gs

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "io/atomic_file.hpp"
+#include "io/checkpoint_insertion.hpp"
 #include "io/fnv1a.hpp"
 #include "io/h5_io.hpp"
 #include "io/h5_walls.hpp"
@@ -113,6 +114,7 @@ std::uint64_t checkpoint_checksum(const Checkpoint& c) {
     sum.add(state.data(), sizeof(state));
   }
   sum.add_array(c.decomposition_cuts);
+  if (c.insertion) add_insertion(sum, *c.insertion);
   return sum.value();
 }
 
@@ -134,6 +136,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
     write_history(f, c.history, c.particles.size());
     write_walls(f, "walls", c.walls, {});
     write_decomposition(f, c);
+    if (c.insertion) write_insertion(f, *c.insertion);
     h5::write_attribute(f, "/", "checksum", checksum);
     // Last: a file without the marker was not finished.
     h5::write_attribute(f, "/", "complete", std::int32_t(1));

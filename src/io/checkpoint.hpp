@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/insertion_state.hpp"
 #include "core/particle_snapshot.hpp"
 #include "io/fnv1a.hpp"
 #include "walls/wall.hpp"
@@ -42,6 +43,7 @@ struct Checkpoint {
   int decomposition_axis = 2;               // slab axis: 0 x, 1 y, 2 z; -1: not slabs
   std::vector<double> decomposition_cuts;   // slab bounds along the axis [m]; empty when not slabs
   std::uint64_t random_state = 0;
+  std::optional<InsertionState> insertion;  // a run with inlets only (io/checkpoint_insertion.hpp)
 };
 
 struct CheckpointExpectations {

@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "io/checkpoint.hpp"
+#include "io/checkpoint_insertion.hpp"
 #include "io/h5_io.hpp"
 #include "io/h5_walls.hpp"
 
@@ -178,6 +179,7 @@ Checkpoint read_contents(const h5::File& f, const std::function<bool(const Vec3d
   const std::vector<hsize_t> cuts = h5::dims_of(f, "decomposition/cuts");
   if (cuts.size() != 1) refuse(f.path(), "decomposition/cuts is not one-dimensional");
   c.decomposition_cuts = h5::read_array<double>(f, "decomposition/cuts", cuts);
+  c.insertion = read_insertion(f);
 
   std::vector<hsize_t> entries;  // per history field
   for_each_history_field(h, [&](const char* name, unsigned, auto& field) {
@@ -220,6 +222,7 @@ Checkpoint read_contents(const h5::File& f, const std::function<bool(const Vec3d
     sum.add(state.data(), sizeof(state));
   }
   sum.add_array(c.decomposition_cuts);
+  if (c.insertion) add_insertion(sum, *c.insertion);
   checksum = sum.value();
   return c;
 }

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "run/insertion_log.hpp"
 #include "run/output_directory.hpp"
 #include "run/run_output.hpp"
 #include "engine/schedule.hpp"
@@ -254,6 +255,8 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
   const long long first_step = sim.step_count();  // after a restart, the rate counts this run's steps only
   Progress progress(first_step, total, particles, transport.rank() == 0);
   StopAgreement stop_signal(transport, a.stop_requested);
+  std::unique_ptr<InsertionLog> inserted;
+  if (!scene.inlets.empty()) inserted = std::make_unique<InsertionLog>(scene, out.directory(), transport);
   sim.check_fault();  // in the first forces
   if (a.restart.empty()) mark_if_due(0);
   if (a.restart.empty()) out.snapshot(sim);
@@ -265,10 +268,9 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
     if (mixing.every > 0) chunk = std::min(chunk, mixing.next_after(step) - step);
     if (mark_step > step) chunk = std::min(chunk, mark_step - step);
     sim.run(chunk, [&] { return stop_signal.after_step(); });
-    if (removes) {  // before any output, so that a checkpoint's removals are in removed.csv
-      out.removals(sim);
-      particles = exchange ? exchange->total(sim.particle_count()) : sim.particle_count();
-    }
+    if (removes) out.removals(sim);  // before any output, so that a checkpoint's removals are in removed.csv
+    if (inserted) inserted->write(sim.take_insertion_records(), [&](const std::string& line) { out.log("%s", line.c_str()); });
+    if (removes || inserted) particles = exchange ? exchange->total(sim.particle_count()) : sim.particle_count();
     mark_if_due(sim.step_count());
     progress.update(sim, particles);
     const long long now = sim.step_count();

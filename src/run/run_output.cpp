@@ -215,7 +215,9 @@ void RunOutput::checkpoint(const Simulation& sim) {
   const HostHistory h = gather_history(transport_, local.id, sim.history());
   const std::string path = directory_ + "/" + checkpoint_h5_name(s.step);
   written_by_rank_0([&] {
-    write_checkpoint(path, make_checkpoint(s, h, sim.walls(), scene_hash_, transport_.size()));
+    const std::optional<InsertionState> insertion =
+        scene_.inlets.empty() ? std::nullopt : std::optional<InsertionState>(sim.insertion());
+    write_checkpoint(path, make_checkpoint(s, h, sim.walls(), scene_hash_, transport_.size(), insertion));
     checkpoints_.push_back(path);
     while (checkpoints_.size() > 2) {
       std::filesystem::remove(checkpoints_.front());

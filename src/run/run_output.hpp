@@ -40,6 +40,7 @@ class RunOutput {
   void resume(long long step);
   // printf to stdout and the log file, rank 0 only.
   void log(const char* format, ...) __attribute__((format(printf, 2, 3)));
+  const std::string& directory() const { return directory_; }
 
  private:
   template <class Write>

@@ -67,6 +67,11 @@ void for_each_radius(const SceneSpec& scene, const std::function<void(int, doubl
   for (const ParticleInit& p : scene.particles) visit(p.material, p.radius);
   for (const LatticeSource& l : scene.lattices)
     if (l.count > 0) visit(l.spec.tmpl.material, l.spec.radius);
+  // The particles an inlet will insert: its extreme radii bound them all.
+  for (const InletSpec& inlet : scene.inlets) {
+    visit(inlet.tmpl.material, smallest_radius(inlet.size));
+    visit(inlet.tmpl.material, largest_radius(inlet.size));
+  }
 }
 
 double largest_radius(const SceneSpec& scene) {

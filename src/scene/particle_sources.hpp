@@ -47,8 +47,9 @@ class ParticleStream {
 };
 
 std::size_t particle_count(const SceneSpec& scene);
-// Calls visit(material, radius) for every explicit particle and once per
-// lattice: every radius the scene has, without generating a lattice.
+// Calls visit(material, radius) for every explicit particle, once per
+// lattice, and for the smallest and largest radius of each inlet: every
+// radius the run can have, without generating a lattice.
 void for_each_radius(const SceneSpec& scene, const std::function<void(int material, double radius)>& visit);
 double largest_radius(const SceneSpec& scene);   // 0 without particles
 double smallest_radius(const SceneSpec& scene);  // infinity without particles

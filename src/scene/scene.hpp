@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/inlet_spec.hpp"
 #include "scene/mixing_spec.hpp"
 #include "scene/outlets.hpp"
 #include "scene/particle_sets.hpp"
@@ -75,6 +76,7 @@ struct SceneSettings {
   std::vector<OutletSpec> outlets;   // regions where particles are removed (scene/outlets.hpp)
   unsigned open_faces = 0;           // domain faces particles leave through, removed (scene/outlets.hpp)
   bool has_exits() const { return !outlets.empty() || open_faces != 0; }  // particles can leave the run
+  std::vector<InletSpec> inlets;       // particles inserted during the run (engine/insertion.hpp)
   // "<file>:<line>: <key path>: <what>" for each value the scene sets that the
   // run ignores (a parameter of an effect that is off); check and run print them.
   std::vector<std::string> warnings;

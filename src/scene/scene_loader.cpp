@@ -23,7 +23,7 @@ namespace {
 const std::vector<std::string> kTopKeys = {"domain",    "gravity", "contact_model", "precision",     "effects",
                                            "materials", "pairs",   "particles",     "walls",         "time_step",
                                            "duration",  "output",  "contact_slots", "decomposition",
-                                           "analysis",  "marking",       "outlets"};
+                                           "analysis",  "marking", "outlets",       "inlets"};
 
 void parse_decomposition(const Map& m, SceneSpec& s) {
   DecompositionSpec& d = s.decomposition;
@@ -244,9 +244,11 @@ SceneSpec parse_scene(const std::string& yaml_text, const std::string& source) {
   parse_materials(top, s);
   parse_walls(top, s);
   parse_particles(top, s);
+  parse_inlets(top, s);
   parse_pairs(top, s);
   check_search_grid(top, s);
   resolve_time_step(top, s);
+  check_inlet_rates(top, s);
   if (const std::string problem = fp32_state_problem(s); !problem.empty()) fail(top.get("precision"), problem);
   parse_analysis(top, s);
   parse_marking(top, s);

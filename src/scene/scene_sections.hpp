@@ -1,5 +1,6 @@
 #pragma once
 // Section parsers of the scene loader that live outside scene_loader.cpp.
+#include "scene/fill_region.hpp"
 #include "scene/scene_yaml.hpp"
 
 namespace gs::scene_yaml {
@@ -14,6 +15,19 @@ void parse_walls(const Map& top, SceneSpec& s);
 // limits of bin_triangles (walls/mesh.hpp), naming the mesh and its size
 // against the domain (needs s.meshes and the walls section).
 void check_mesh_binning(const Map& top, const SceneSpec& s, double cell_size);
+
+// Parts of a particle set shared by `particles:` and `inlets:`
+// (scene_particles.cpp): material, velocities and marker; a region (box or
+// cylinder); the sizes (radius, a range, or a distribution by count or mass).
+ParticleTemplate parse_template(const SceneSpec& s, const Map& m);
+FillRegion parse_region(const Val& v);
+SizeSpec parse_sizes(const Map& m);
+
+// `inlets:` -> s.inlets, checked against the domain and the sizes (needs
+// s.materials); check_inlet_rates then refuses a rate no batch can place
+// (needs the time step). scene_inlets.cpp.
+void parse_inlets(const Map& top, SceneSpec& s);
+void check_inlet_rates(const Map& top, SceneSpec& s);
 
 // `particles:` -> s.particles, then checks them against the domain, the walls
 // and each other (needs s.materials, s.walls and the domain).
