@@ -66,6 +66,12 @@ class Simulation {
   std::vector<MeshLoad> mesh_loads() const;
 
   ParticleSnapshot snapshot() const;  // this rank's owned particles
+  // The measurements' contact pass (engine/contact_measure_kernel.hpp) at
+  // `step`: after that step's force computation, or now when the simulation
+  // is at it. Its result, per owned particle in snapshot (id) order, until
+  // the next pass.
+  void measure_contacts_at(long long step);
+  std::vector<ContactMeasure> contact_measures() const;
   HostHistory history() const;  // in snapshot (id) order
   // Ids (ascending) and history of the particles with a stored wall contact.
   ParticleRecords wall_contact_history() const;
@@ -105,6 +111,7 @@ class Simulation {
   double time_ = 0;
   long long step_ = 0;
   long long last_reorder_ = 0;  // step of the last memory re-sort
+  long long contact_measure_step_ = -1;  // the step of the next contact pass; -1: none
   StepTimings timings_;  // sampled: the timed steps' phases
   double run_seconds_ = 0;  // all of run(), measured
   SetupTimings setup_timings_;

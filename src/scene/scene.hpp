@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/measurement_spec.hpp"
 #include "scene/mixing_spec.hpp"
 #include "scene/particle_sets.hpp"
 #include "core/materials.hpp"
@@ -71,6 +72,7 @@ struct SceneSettings {
   DecompositionSpec decomposition;
   std::optional<MixingSpec> mixing;  // analysis.mixing (docs/MIXING.md); none: no mixing analysis
   std::optional<MarkingSpec> marking;  // none: markers stay as created
+  MeasurementsSpec measurements;     // flows and averages during the run (docs/MEASUREMENTS.md)
   // "<file>:<line>: <key path>: <what>" for each value the scene sets that the
   // run ignores (a parameter of an effect that is off); check and run print them.
   std::vector<std::string> warnings;

@@ -23,7 +23,7 @@ namespace {
 const std::vector<std::string> kTopKeys = {"domain",    "gravity", "contact_model", "precision",     "effects",
                                            "materials", "pairs",   "particles",     "walls",         "time_step",
                                            "duration",  "output",  "contact_slots", "decomposition",
-                                           "analysis",  "marking"};
+                                           "analysis",  "marking",  "measurements"};
 
 void parse_decomposition(const Map& m, SceneSpec& s) {
   DecompositionSpec& d = s.decomposition;
@@ -248,6 +248,7 @@ SceneSpec parse_scene(const std::string& yaml_text, const std::string& source) {
   if (const std::string problem = fp32_state_problem(s); !problem.empty()) fail(top.get("precision"), problem);
   parse_analysis(top, s);
   parse_marking(top, s);
+  parse_measurements(top, s);
   return s;
 }
 

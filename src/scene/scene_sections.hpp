@@ -25,4 +25,7 @@ void parse_analysis(const Map& top, SceneSpec& s);
 // `marking:` -> s.marking (needs the duration); scene_marking.cpp.
 void parse_marking(const Map& top, SceneSpec& s);
 
+// `measurements:` -> s.measurements (needs the domain, the duration and the time step); scene_measurements.cpp.
+void parse_measurements(const Map& top, SceneSpec& s);
+
 }  // namespace gs::scene_yaml
