@@ -239,7 +239,7 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
 
     t0 = Clock::now();
     kernels_->forces().compute(store_, dt, p.step);
-    if (p.step == contact_measure_step_) kernels_->forces().measure_contacts(store_, p.step);
+    if (p.step == contact_measure_step_) measure_contacts();
     timings_.forces += phase_seconds(t0);
     t0 = Clock::now();
     kernels_->integration().kick(store_, p);
@@ -310,10 +310,17 @@ ParticleSnapshot Simulation::snapshot() const {
 
 void Simulation::measure_contacts_at(long long step) {
   contact_measure_step_ = step;
-  if (step == step_) kernels_->forces().measure_contacts(store_, step);
+  if (step == step_) measure_contacts();
+}
+
+void Simulation::measure_contacts() {
+  kernels_->forces().measure_contacts(store_, contact_measure_step_);
+  measured_step_ = contact_measure_step_;
 }
 
 std::vector<ContactMeasure> Simulation::contact_measures() const {
+  if (measured_step_ != step_)
+    throw std::logic_error("no contact pass at step " + std::to_string(step_) + " (measure_contacts_at before the run)");
   kernels_->synchronize();
   const std::vector<ContactMeasure> m = kernels_->forces().contact_measures(store_);
   const std::vector<ParticleId> id = store_.id.to_host();

@@ -68,8 +68,8 @@ class Simulation {
   ParticleSnapshot snapshot() const;  // this rank's owned particles
   // The measurements' contact pass (engine/contact_measure_kernel.hpp) at
   // `step`: after that step's force computation, or now when the simulation
-  // is at it. Its result, per owned particle in snapshot (id) order, until
-  // the next pass.
+  // is at it. Its result, per owned particle in snapshot (id) order
+  // (std::logic_error unless the pass ran at the current step).
   void measure_contacts_at(long long step);
   std::vector<ContactMeasure> contact_measures() const;
   HostHistory history() const;  // in snapshot (id) order
@@ -93,6 +93,7 @@ class Simulation {
   void move_walls(double t);
   void pose_meshes(double t);
   void rebuild_neighbours();
+  void measure_contacts();  // the contact pass, now
   void step_particles_between_ranks();
   double phase_seconds(std::chrono::steady_clock::time_point start) const;
   static constexpr long long kTimedEvery = 16;  // steps between timed ones
@@ -112,6 +113,7 @@ class Simulation {
   long long step_ = 0;
   long long last_reorder_ = 0;  // step of the last memory re-sort
   long long contact_measure_step_ = -1;  // the step of the next contact pass; -1: none
+  long long measured_step_ = -1;         // the step of the last one
   StepTimings timings_;  // sampled: the timed steps' phases
   double run_seconds_ = 0;  // all of run(), measured
   SetupTimings setup_timings_;

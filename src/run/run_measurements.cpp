@@ -130,8 +130,9 @@ void RunMeasurements::resume(const Simulation& sim) {
     for (Flow& f : flows_) {
       const std::vector<std::vector<std::string>> last = f.log->resume(step);
       // A flow that had started continues from this state, which its last
-      // evaluation (at the checkpoint) saw.
-      if (!last.empty()) f.counter.start(s, flow_cumulative_from_rows(f.counter, last));
+      // evaluation (at the checkpoint) saw, and from the totals of the log's
+      // row there (none in another run's directory: from zero).
+      if (step >= f.schedule.step_of(0)) f.counter.start(s, flow_cumulative_from_rows(f.counter, last));
     }
     for (Average& a : averages_) {
       a.log->resume(step);
