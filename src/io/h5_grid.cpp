@@ -40,6 +40,9 @@ void write_grid_h5(const std::string& path, const GridShape& shape, const std::v
   h5::write_array(f, "origin", origin, {3});
   h5::write_array(f, "spacing", spacing, {3});
   h5::write_array(f, "cells", cells, {3});
+  std::string names;  // the fields in their order, which the index follows
+  for (const GridField& field : fields) names += (names.empty() ? "" : ",") + field.name;
+  h5::write_string_attribute(f, "/", "fields", names);
   for (const GridField& field : fields) {
     if (field.values.size() != std::size_t(shape.cell_count()) * std::size_t(field.components))
       throw std::logic_error("grid field " + field.name + " has the wrong number of values");
@@ -60,8 +63,8 @@ GridSeriesEntry read_grid_entry(const std::string& directory, const std::string&
   e.shape.origin = Vec3d(origin[0], origin[1], origin[2]);
   e.shape.spacing = Vec3d(spacing[0], spacing[1], spacing[2]);
   e.shape.cells = {cells[0], cells[1], cells[2]};
-  for (const std::string& name : h5::list_group(f, "/")) {
-    if (name == "origin" || name == "spacing" || name == "cells") continue;
+  std::stringstream names(h5::read_string_attribute(f, "/", "fields"));
+  for (std::string name; std::getline(names, name, ',');) {
     const std::vector<hsize_t> dims = h5::dims_of(f, name);
     e.fields.emplace_back(name, dims.size() == 4 ? int(dims[3]) : 1);
   }
