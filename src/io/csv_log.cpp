@@ -4,7 +4,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "io/atomic_file.hpp"
 #include "io/text_file.hpp"
 
 namespace gs {
@@ -40,23 +39,19 @@ void CsvLog::append(const std::vector<std::string>& rows) {
   out.close();
 }
 
-std::vector<std::vector<std::string>> CsvLog::resume(long long step) {
+std::vector<std::vector<std::string>> CsvLog::last_rows() const {
   std::ifstream in(path_);
-  std::string line, kept = header_ + "\n";
+  std::string line;
   std::getline(in, line);  // the header, checked on opening
   std::vector<std::vector<std::string>> last;
-  long long last_step = -1;
+  std::string last_step;
   while (std::getline(in, line)) {
-    const std::vector<std::string> f = fields_of(line);
-    if (f.size() < 2) continue;  // a torn last line of a run that was killed
-    const long long s = std::stoll(f[1]);
-    if (s > step) continue;
-    kept += line + "\n";
-    if (s != last_step) last.clear();
-    last_step = s;
-    last.push_back(f);
+    std::vector<std::string> f = fields_of(line);
+    if (f.size() < 2) continue;
+    if (f[1] != last_step) last.clear();
+    last_step = f[1];
+    last.push_back(std::move(f));
   }
-  write_atomically(path_, [&](const std::string& temporary) { write_text_file(temporary, kept); });
   return last;
 }
 

@@ -16,10 +16,10 @@ class CsvLog {
   const std::string& path() const { return path_; }
   // Appends `rows` (each without its newline) and flushes; std::runtime_error on failure.
   void append(const std::vector<std::string>& rows);
-  // After a restart at `step`: drops the rows of later steps (written by the
-  // run that was stopped after its checkpoint) and returns the rows of the
-  // last step at or before it, split into fields (empty when none).
-  std::vector<std::vector<std::string>> resume(long long step);
+  // The rows of the last step in the file, split into fields (empty when
+  // there are none): after a restart, the rows of later steps are gone
+  // already (run/output_directory.hpp).
+  std::vector<std::vector<std::string>> last_rows() const;
 
  private:
   std::string path_, header_;

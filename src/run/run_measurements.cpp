@@ -128,14 +128,13 @@ void RunMeasurements::resume(const Simulation& sim) {
   const ParticleSnapshot s = flows_.empty() ? ParticleSnapshot() : gather_snapshot(transport_, sim.snapshot());
   written_by_rank_0([&] {
     for (Flow& f : flows_) {
-      const std::vector<std::vector<std::string>> last = f.log->resume(step);
+      const std::vector<std::vector<std::string>> last = f.log->last_rows();
       // A flow that had started continues from this state, which its last
       // evaluation (at the checkpoint) saw, and from the totals of the log's
       // row there (none in another run's directory: from zero).
       if (step >= f.schedule.step_of(0)) f.counter.start(s, flow_cumulative_from_rows(f.counter, last));
     }
     for (Average& a : averages_) {
-      a.log->resume(step);
       if (a.spec->bin_count() == 1) continue;
       for (long long k = 0; a.schedule.step_of(k) <= step; ++k) {
         const std::string name = grid_file_name(a.spec->name, a.schedule.step_of(k));

@@ -30,9 +30,10 @@ class RunMeasurements {
   // (`checkpoint`) every flow that has started is evaluated too, so that a
   // restart from it continues from a sample and counts exactly.
   void evaluate(const Simulation& sim, bool checkpoint = false);
-  // After a restart at the simulation's step: the logs lose the rows of later
-  // steps, the flows continue from the restored positions and the cumulative
-  // totals of their last row, the grid indexes keep the earlier grids.
+  // After a restart at the simulation's step, in its directory (whose logs
+  // prepare_output_directory has cut at the step): the flows continue from
+  // the restored positions and the cumulative totals of their last row, the
+  // grid indexes list the earlier grids.
   void resume(const Simulation& sim);
 
  private:
