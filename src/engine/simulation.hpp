@@ -72,6 +72,7 @@ class Simulation {
   // (std::logic_error unless the pass ran at the current step).
   void measure_contacts_at(long long step);
   std::vector<ContactMeasure> contact_measures() const;
+  double contact_pass_seconds() const { return contact_pass_seconds_; }  // wall time of every pass so far
   HostHistory history() const;  // in snapshot (id) order
   // Ids (ascending) and history of the particles with a stored wall contact.
   ParticleRecords wall_contact_history() const;
@@ -114,6 +115,7 @@ class Simulation {
   long long last_reorder_ = 0;  // step of the last memory re-sort
   long long contact_measure_step_ = -1;  // the step of the next contact pass; -1: none
   long long measured_step_ = -1;         // the step of the last one
+  double contact_pass_seconds_ = 0;
   StepTimings timings_;  // sampled: the timed steps' phases
   double run_seconds_ = 0;  // all of run(), measured
   SetupTimings setup_timings_;

@@ -268,6 +268,7 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
   out.log("done: %lld steps, t = %.6g s, %.3g particle-steps/s\n", total, sim.time(),
           wall > 0 ? double(sim.step_count() - first_step) * double(particles) / wall : 0.0);
   if (exchange) out.log("decomposition at the end: %s\n", exchange->describe().c_str());
+  out.log("%s", measurements.cost_summary(sim).c_str());
   const StepTimings t = sim.timings();
   out.log("time per phase (s, rank 0): integration %.3f, neighbour build %.3f, contact forces %.3f, exchange %.3f, "
           "output %.3f, total wall %.3f\n",

@@ -7,6 +7,7 @@
 #include "comm/contact_measure_gather.hpp"
 #include "comm/rank_agreement.hpp"
 #include "comm/snapshot_gather.hpp"
+#include "core/wall_clock.hpp"
 
 namespace gs {
 namespace {
@@ -89,19 +90,33 @@ void RunMeasurements::evaluate(const Simulation& sim, bool checkpoint) {
       contacts_needed = contacts_needed || a.spec->needs_contacts();
     }
   if (flows.empty() && averages.empty()) return;
+  const auto t0 = Clock::now();
   ParticleSnapshot local = sim.snapshot();
   std::vector<ContactMeasure> contacts;
   if (contacts_needed) contacts = gather_contact_measures(transport_, local.id, sim.contact_measures());
   const ParticleSnapshot s = gather_snapshot(transport_, std::move(local));
+  gather_seconds_ += seconds_since(t0);
   written_by_rank_0([&] {
     for (Flow* f : flows) {
+      const auto t1 = Clock::now();
       f->counter.update(s);
       f->log->append(flow_csv_rows(f->counter, s.time, s.step));
+      f->seconds += seconds_since(t1);
     }
-    for (Average* a : averages) write_average(*a, s, contacts);
+    for (Average* a : averages) {
+      const auto t1 = Clock::now();
+      write_average(*a, s, contacts);
+      a->seconds += seconds_since(t1);
+    }
   });
-  for (Flow* f : flows) f->last_step = step;
-  for (Average* a : averages) a->last_step = step;
+  for (Flow* f : flows) {
+    f->last_step = step;
+    ++f->evaluations;
+  }
+  for (Average* a : averages) {
+    a->last_step = step;
+    ++a->evaluations;
+  }
 }
 
 void RunMeasurements::write_average(Average& a, const ParticleSnapshot& s, const std::vector<ContactMeasure>& contacts) {
@@ -120,6 +135,25 @@ void RunMeasurements::write_average(Average& a, const ParticleSnapshot& s, const
   write_grid_h5(directory_ + "/" + e.h5_file, e.shape, fields, e.time, e.step);
   a.grids.push_back(e);
   write_grid_xdmf(directory_ + "/average_" + spec.name + ".xdmf", spec.name, a.grids);
+}
+
+std::string RunMeasurements::cost_summary(const Simulation& sim) const {
+  if (flows_.empty() && averages_.empty()) return "";
+  char line[200];
+  std::string out;
+  for (const Flow& f : flows_) {
+    std::snprintf(line, sizeof(line), "measurement flow %s: %lld evaluations, %.3f s\n", f.counter.spec().name.c_str(),
+                  f.evaluations, f.seconds);
+    out += line;
+  }
+  for (const Average& a : averages_) {
+    std::snprintf(line, sizeof(line), "measurement average %s: %lld evaluations, %.3f s\n", a.spec->name.c_str(),
+                  a.evaluations, a.seconds);
+    out += line;
+  }
+  std::snprintf(line, sizeof(line), "measurements: gathering %.3f s, contact pass %.3f s (in contact forces)\n",
+                gather_seconds_, sim.contact_pass_seconds());
+  return out + line;
 }
 
 void RunMeasurements::resume(const Simulation& sim) {

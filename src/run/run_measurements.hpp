@@ -35,6 +35,9 @@ class RunMeasurements {
   // the restored positions and the cumulative totals of their last row, the
   // grid indexes list the earlier grids.
   void resume(const Simulation& sim);
+  // What the measurements cost this rank so far, for the log: per
+  // measurement its evaluations and host time, the gathers, the contact pass.
+  std::string cost_summary(const Simulation& sim) const;
 
  private:
   struct Flow {
@@ -42,6 +45,8 @@ class RunMeasurements {
     FlowCounter counter;
     std::unique_ptr<CsvLog> log;
     long long last_step = -1;
+    long long evaluations = 0;
+    double seconds = 0;
   };
   struct Average {
     Schedule schedule;
@@ -49,6 +54,8 @@ class RunMeasurements {
     std::unique_ptr<CsvLog> log;
     std::vector<GridSeriesEntry> grids;
     long long last_step = -1;
+    long long evaluations = 0;
+    double seconds = 0;
   };
   template <class Write>
   void written_by_rank_0(Write&& write);
@@ -58,6 +65,7 @@ class RunMeasurements {
   Transport& transport_;
   std::vector<Flow> flows_;
   std::vector<Average> averages_;
+  double gather_seconds_ = 0;
 };
 
 }  // namespace gs
