@@ -27,10 +27,8 @@ const char* attribute_type(int components) {
   return components == 1 ? "Scalar" : components == 3 ? "Vector" : "Tensor";
 }
 
-}  // namespace
-
-void write_grid_h5(const std::string& path, const GridShape& shape, const std::vector<GridField>& fields, double time,
-                   long long step) {
+void write_grid_file(const std::string& path, const GridShape& shape, const std::vector<GridField>& fields,
+                     double time, long long step) {
   h5::File f = h5::File::create(path);
   h5::write_attribute(f, "/", "time", time);
   h5::write_attribute(f, "/", "step", std::int64_t(step));
@@ -49,6 +47,13 @@ void write_grid_h5(const std::string& path, const GridShape& shape, const std::v
     h5::write_array(f, field.name, field.values.data(), field_dims(shape, field.components));
   }
   f.close();
+}
+
+}  // namespace
+
+void write_grid_h5(const std::string& path, const GridShape& shape, const std::vector<GridField>& fields, double time,
+                   long long step) {
+  write_atomically(path, [&](const std::string& temporary) { write_grid_file(temporary, shape, fields, time, step); });
 }
 
 GridSeriesEntry read_grid_entry(const std::string& directory, const std::string& h5_file) {

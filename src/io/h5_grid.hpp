@@ -27,7 +27,9 @@ struct GridShape {
 };
 
 // Writes /<name> of shape (nz, ny, nx[, components]) for every field, and
-// the root attributes time, step, origin and spacing. Every HDF5 call checked.
+// the root attributes time, step and fields (the names in order), and the
+// datasets origin, spacing and cells; atomically (io/atomic_file.hpp). Every
+// HDF5 call checked.
 void write_grid_h5(const std::string& path, const GridShape& shape, const std::vector<GridField>& fields, double time,
                    long long step);
 
