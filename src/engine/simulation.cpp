@@ -241,6 +241,7 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
 
     t0 = Clock::now();
     kernels_->forces().compute(store_, dt, p.step);
+    if (p.step == contact_measure_step_) measure_contacts();
     timings_.forces += phase_seconds(t0);
     t0 = Clock::now();
     kernels_->integration().kick(store_, p);
@@ -308,6 +309,31 @@ ParticleSnapshot Simulation::snapshot() const {
   s.torque = permuted(kernels_->movement().torques(store_), order);
   if (keeps_history(scene_.model, scene_.effects)) s.contacts = permuted(kernels_->movement().contact_counts(store_), order);
   return s;
+}
+
+void Simulation::measure_contacts_at(long long step) {
+  contact_measure_step_ = step;
+  if (step == step_) measure_contacts();
+}
+
+void Simulation::measure_contacts() {
+  const auto t0 = Clock::now();
+  kernels_->forces().measure_contacts(store_, contact_measure_step_);
+  kernels_->synchronize();  // only at the steps a measurement is due
+  contact_pass_seconds_ += seconds_since(t0);
+  measured_step_ = contact_measure_step_;
+}
+
+std::vector<ContactMeasure> Simulation::contact_measures() const {
+  if (measured_step_ != step_)
+    throw std::logic_error("no contact pass at step " + std::to_string(step_) + " (measure_contacts_at before the run)");
+  kernels_->synchronize();
+  const std::vector<ContactMeasure> m = kernels_->forces().contact_measures(store_);
+  const std::vector<ParticleId> id = store_.id.to_host();
+  std::vector<std::size_t> order(m.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
+  return permuted(m, order);
 }
 
 ParticleRecords Simulation::wall_contact_history() const {

@@ -71,6 +71,13 @@ class Simulation {
   std::vector<MeshLoad> mesh_loads() const;
 
   ParticleSnapshot snapshot() const;  // this rank's owned particles
+  // The measurements' contact pass (engine/contact_measure_kernel.hpp) at
+  // `step`: after that step's force computation, or now when the simulation
+  // is at it. Its result, per owned particle in snapshot (id) order
+  // (std::logic_error unless the pass ran at the current step).
+  void measure_contacts_at(long long step);
+  std::vector<ContactMeasure> contact_measures() const;
+  double contact_pass_seconds() const { return contact_pass_seconds_; }  // wall time of every pass so far
   HostHistory history() const;  // in snapshot (id) order
   // Ids (ascending) and history of the particles with a stored wall contact.
   ParticleRecords wall_contact_history() const;
@@ -98,6 +105,7 @@ class Simulation {
   void rebuild_neighbours();
   void insert_due();
   void append_inserted(const std::vector<ParticleInit>& inserted);
+  void measure_contacts();  // the contact pass, now
   void step_particles_between_ranks();
   double phase_seconds(std::chrono::steady_clock::time_point start) const;
   static constexpr long long kTimedEvery = 16;  // steps between timed ones
@@ -116,6 +124,9 @@ class Simulation {
   double time_ = 0;
   long long step_ = 0;
   long long last_reorder_ = 0;  // step of the last memory re-sort
+  long long contact_measure_step_ = -1;  // the step of the next contact pass; -1: none
+  long long measured_step_ = -1;         // the step of the last one
+  double contact_pass_seconds_ = 0;
   StepTimings timings_;  // sampled: the timed steps' phases
   double run_seconds_ = 0;  // all of run(), measured
   SetupTimings setup_timings_;

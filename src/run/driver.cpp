@@ -13,6 +13,7 @@
 
 #include "run/insertion_log.hpp"
 #include "run/output_directory.hpp"
+#include "run/run_measurements.hpp"
 #include "run/run_output.hpp"
 #include "engine/schedule.hpp"
 #include "backend/memory.hpp"
@@ -231,7 +232,7 @@ class StopAgreement {
 };
 
 int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, Simulation& sim, RunOutput& out,
-            long long total, long long particles) {
+            RunMeasurements& measurements, long long total, long long particles) {
   RankExchange* exchange = sim.exchange();
   const long long every = scene.output.interval > 0 ? steps_per(scene.output.interval, scene.time_step) : total;
   const long long checkpoint_every = steps_per(scene.output.checkpoint_interval, scene.time_step);
@@ -261,12 +262,18 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
   if (a.restart.empty()) mark_if_due(0);
   if (a.restart.empty()) out.snapshot(sim);
   if (a.restart.empty() && mixing.due(0)) out.mixing(sim);
+  if (a.restart.empty()) {
+    measurements.prepare(sim, 0);
+    measurements.evaluate(sim);
+  }
   while (sim.step_count() < total) {
     const long long step = sim.step_count();
     long long chunk = std::min({every > 0 ? every - step % every : total, total - step, 200LL});
     if (checkpoint_every > 0) chunk = std::min(chunk, checkpoint_every - step % checkpoint_every);
     if (mixing.every > 0) chunk = std::min(chunk, mixing.next_after(step) - step);
     if (mark_step > step) chunk = std::min(chunk, mark_step - step);
+    if (const long long due = measurements.next_due_after(step); due > step) chunk = std::min(chunk, due - step);
+    measurements.prepare(sim, step + chunk);
     sim.run(chunk, [&] { return stop_signal.after_step(); });
     if (removes) out.removals(sim);  // before any output, so that a checkpoint's removals are in removed.csv
     if (inserted) inserted->write(sim.take_insertion_records(), [&](const std::string& line) { out.log("%s", line.c_str()); });
@@ -276,12 +283,14 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
     const long long now = sim.step_count();
     if ((every > 0 && now % every == 0) || now == total) out.snapshot(sim);
     if (mixing.due(now)) out.mixing(sim);
+    measurements.evaluate(sim);
     const bool wall_due = checkpoint_seconds > 0 &&
                           seconds_since(last_checkpoint) >= checkpoint_seconds;
     // Every rank must agree before a collective checkpoint or a stop.
     const bool stop = stop_signal.settle();
     const bool due = (checkpoint_every > 0 && now % checkpoint_every == 0) || transport.min(wall_due ? 0 : 1) == 0;
     if (due || stop || (checkpointing && now == total)) {
+      measurements.evaluate(sim, true);
       out.checkpoint(sim);
       last_checkpoint = Clock::now();
     }
@@ -295,6 +304,7 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
   out.log("done: %lld steps, t = %.6g s, %.3g particle-steps/s\n", total, sim.time(), progress.rate());
   if (removes) out.log("particles at the end: %lld\n", particles);
   if (exchange) out.log("decomposition at the end: %s\n", exchange->describe().c_str());
+  out.log("%s", measurements.cost_summary(sim).c_str());
   const StepTimings t = sim.timings();
   out.log("time per phase (s, rank 0): integration %.3f, neighbour build %.3f, contact forces %.3f, exchange %.3f, "
           "output %.3f, total wall %.3f\n",
@@ -369,9 +379,11 @@ int run_scene(const RunRequest& request, Transport& transport) {
   const double setup_seconds = seconds_since(setup_start);
   RankExchange* exchange = sim->exchange();
   std::unique_ptr<RunOutput> output;
+  std::unique_ptr<RunMeasurements> measurements;
   on_every_rank(transport, [&] {
     if (transport.rank() == 0) prepare_output_directory(directory, directory_use(a), scene, sim->step_count());
     output = std::make_unique<RunOutput>(scene, directory, transport, hash);
+    measurements = std::make_unique<RunMeasurements>(scene, directory, transport);
   });
   RunOutput& out = *output;
   const long long particles =
@@ -390,11 +402,12 @@ int run_scene(const RunRequest& request, Transport& transport) {
             host.threads, host.cores, host.cores > 1 ? "s" : "");
   if (!a.restart.empty()) {
     out.resume(sim->step_count());
+    measurements->resume(*sim);
     out.log("restarted from %s at step %lld\n", a.restart.c_str(), sim->step_count());
   }
   if (exchange) out.log("decomposition: %s\n", exchange->describe().c_str());
   try {
-    return advance(scene, a, transport, *sim, out, total, particles);
+    return advance(scene, a, transport, *sim, out, *measurements, total, particles);
   } catch (const SimulationFault& fault) {
     // Every rank has the same fault (agreed in check_fault): log it and keep
     // the state it was found in.

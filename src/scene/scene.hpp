@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "scene/inlet_spec.hpp"
+#include "scene/measurement_spec.hpp"
 #include "scene/mixing_spec.hpp"
 #include "scene/outlets.hpp"
 #include "scene/particle_sets.hpp"
@@ -77,6 +78,7 @@ struct SceneSettings {
   unsigned open_faces = 0;           // domain faces particles leave through, removed (scene/outlets.hpp)
   bool has_exits() const { return !outlets.empty() || open_faces != 0; }  // particles can leave the run
   std::vector<InletSpec> inlets;       // particles inserted during the run (engine/insertion.hpp)
+  MeasurementsSpec measurements;     // flows and averages during the run (docs/MEASUREMENTS.md)
   // "<file>:<line>: <key path>: <what>" for each value the scene sets that the
   // run ignores (a parameter of an effect that is off); check and run print them.
   std::vector<std::string> warnings;

@@ -23,7 +23,8 @@ namespace {
 const std::vector<std::string> kTopKeys = {"domain",    "gravity", "contact_model", "precision",     "effects",
                                            "materials", "pairs",   "particles",     "walls",         "time_step",
                                            "duration",  "output",  "contact_slots", "decomposition",
-                                           "analysis",  "marking", "outlets",       "inlets"};
+                                           "analysis",  "marking", "outlets",       "inlets",
+                                           "measurements"};
 
 void parse_decomposition(const Map& m, SceneSpec& s) {
   DecompositionSpec& d = s.decomposition;
@@ -253,6 +254,7 @@ SceneSpec parse_scene(const std::string& yaml_text, const std::string& source) {
   parse_analysis(top, s);
   parse_marking(top, s);
   parse_outlets(top, s);
+  parse_measurements(top, s);
   return s;
 }
 

@@ -43,5 +43,7 @@ void parse_marking(const Map& top, SceneSpec& s);
 // scene_outlets.cpp.
 void parse_open_faces(const Map& domain, SceneSpec& s);
 void parse_outlets(const Map& top, SceneSpec& s);
+// `measurements:` -> s.measurements (needs the domain, the duration and the time step); scene_measurements.cpp.
+void parse_measurements(const Map& top, SceneSpec& s);
 
 }  // namespace gs::scene_yaml
