@@ -165,7 +165,8 @@ void Simulation::upload(const SceneSpec& scene, const std::function<bool(const V
 }
 
 void Simulation::move_walls(double t) {
-  for (std::size_t k = 0; k < walls_.size(); ++k) walls_[k] = wall_at(scene_.walls[k], timeline_of(scene_.wall_timelines, k), t);
+  for (std::size_t k = 0; k < walls_.size(); ++k)
+    walls_[k] = wall_at(scene_.walls[k], timeline_of(scene_.wall_timelines, k), t);
   kernels_->forces().set_walls(walls_);
 }
 

@@ -106,7 +106,8 @@ WallSurface cone_surface(const Vec3d& base, const Vec3d& axis, double r0, double
   for (int end = 0; end < 2; ++end)
     for (int k = 0; k < n; ++k) {
       const double phi = 2 * kPi * k / n;
-      s.vertices.push_back(base + (end ? length : 0.0) * axis + (end ? r1 : r0) * (std::cos(phi) * u + std::sin(phi) * v));
+      const double along = end ? length : 0.0, radius = end ? r1 : r0;
+      s.vertices.push_back(base + along * axis + radius * (std::cos(phi) * u + std::sin(phi) * v));
     }
   band(s, n);
   return s;

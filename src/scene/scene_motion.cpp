@@ -46,8 +46,10 @@ void parse_rotation(const Val& v, Wall& w, Timeline& s) {
   const std::string key = r.one_of({"rpm", "angular_speed"});
   const double scale = key == "rpm" ? kRadPerSecondPerRpm : 1.0;
   const Val rate = r.get(key);
-  if (rate.node.IsMap()) s.angular_velocity = parse_table(rate, [&](const Val& x) { return axis * (number(x) * scale); });
-  else w.angular_velocity = axis * (number(rate) * scale);
+  if (rate.node.IsMap())
+    s.angular_velocity = parse_table(rate, [&](const Val& x) { return axis * (number(x) * scale); });
+  else
+    w.angular_velocity = axis * (number(rate) * scale);
 }
 
 // `oscillation: {direction, amplitude, frequency, phase}`.

@@ -38,7 +38,8 @@ namespace scene_yaml {
 
 namespace {
 
-const std::vector<std::string> kWallKeys = {"plane", "box", "cylinder", "plate", "cone", "mesh", "name", "material", "motion", "active"};
+const std::vector<std::string> kWallKeys = {"plane", "box",  "cylinder", "plate",  "cone",
+                                            "mesh",  "name", "material", "motion", "active"};
 
 void check_new_name(const SceneSpec& s, const std::string& name, const Val& where) {
   for (const auto& other : s.wall_names)
