@@ -84,14 +84,18 @@ void Simulation::set_up(const SceneSpec& scene) {
   removes_ = scene.has_exits();
   if (removes_)
     kernels_->removal().set_exits(exits_of(scene.outlets, scene.open_faces), scene.domain_min, scene.domain_max);
-  for (const Wall& w : walls_) walls_move_ = walls_move_ || norm2(w.velocity) > 0 || norm2(w.angular_velocity) > 0;
+  for (std::size_t k = 0; k < walls_.size(); ++k) {
+    const Wall& w = walls_[k];
+    walls_move_ = walls_move_ || norm2(w.velocity) > 0 || norm2(w.angular_velocity) > 0 ||
+                  !timeline_of(scene.wall_timelines, k).none();
+  }
   meshes_ = scene.meshes;
   if (meshes_.n_triangles() > 0) {
     if (meshes_.n_triangles() >= kMaxMeshFeatures || meshes_.n_vertices() >= kMaxMeshFeatures ||
         meshes_.n_edges >= kMaxMeshFeatures)
       throw std::runtime_error("the scene's meshes have more than 2^28 triangles, edges or vertices");
     for (const MeshMotion& m : meshes_.motion)
-      meshes_move_ = meshes_move_ || norm2(m.velocity) > 0 || norm2(m.angular_velocity) > 0;
+      meshes_move_ = meshes_move_ || norm2(m.velocity) > 0 || norm2(m.angular_velocity) > 0 || !m.timeline.none();
     kernels_->forces().set_meshes(meshes_);
     // Bins in each mesh's own frame: binned once, whatever the motion.
     kernels_->forces().set_mesh_bins(bin_triangles(meshes_, grid_.cell_size, run_binning(grid_.cell_size)));
@@ -161,7 +165,8 @@ void Simulation::upload(const SceneSpec& scene, const std::function<bool(const V
 }
 
 void Simulation::move_walls(double t) {
-  for (std::size_t k = 0; k < walls_.size(); ++k) walls_[k] = wall_at(scene_.walls[k], t);
+  for (std::size_t k = 0; k < walls_.size(); ++k)
+    walls_[k] = wall_at(scene_.walls[k], timeline_of(scene_.wall_timelines, k), t);
   kernels_->forces().set_walls(walls_);
 }
 

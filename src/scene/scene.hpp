@@ -14,6 +14,7 @@
 #include "core/types.hpp"
 #include "core/vec3.hpp"
 #include "walls/mesh.hpp"
+#include "walls/timeline.hpp"
 #include "walls/wall.hpp"
 
 namespace gs {
@@ -63,6 +64,7 @@ struct SceneSettings {
   std::vector<PairSpec> pairs;       // every unordered pair of materials that can touch
   std::vector<Wall> walls;
   std::vector<std::string> wall_names;
+  std::vector<Timeline> wall_timelines;  // one per wall, or none (walls/timeline.hpp)
   MeshSet meshes;                    // triangle-mesh walls (docs/MESHES.md); names in meshes.names
   double time_step = 0;              // resolved absolute time step [s]
   double contact_time = 0;           // shortest pair contact time [s]

@@ -168,6 +168,7 @@ std::string misfit(const SceneSpec& s, const ParticleInit& p) {
   if (c.x - r < lo.x || c.y - r < lo.y || c.z - r < lo.z || c.x + r > hi.x || c.y + r > hi.y || c.z + r > hi.z)
     return describe(p) + " is not inside the domain " + str(lo) + " .. " + str(hi);
   for (std::size_t w = 0; w < s.walls.size(); ++w) {
+    if (!timeline_of(s.wall_timelines, w).active.contains(0)) continue;  // not there at t = 0
     const double depth = wall_penetration(s.walls[w], c, p.radius);
     if (depth > slack)
       return describe(p) + " cuts " + str(depth) + " m into wall " + quoted(s.wall_names[w]) + " at t = 0";

@@ -227,6 +227,45 @@ constexpr long long kInletSteps = 1000;  // some 1000 particles inserted
 
 TEST(RankIndependence, InletFeedsBedAcrossSlabs) { expect_rank_independent(inlet_scene(), kInletSteps); }
 
+// Staged walls (docs/SCENES.md, walls): spheres thrown down through an
+// orifice plate onto a shaking gate that opens, a side wall pushed by a
+// velocity table, and a cone around them; every rank poses every wall alike.
+TEST(RankIndependence, StagedWallsPlatesAndCone) {
+  SceneSpec s = settling_scene(DecompositionMethod::slabs);
+  // Those clear of the plate, the cone and the shifted side wall at t = 0.
+  std::vector<ParticleInit> clear;
+  for (ParticleInit p : s.particles) {
+    const double rho = std::hypot(p.position.x - 0.01, p.position.y - 0.01);
+    const double from_cone = std::abs(0.006 + 0.225 * p.position.z - rho) * std::cos(std::atan(0.225));
+    if (p.position.z - p.radius < 0.0085 || from_cone < p.radius + 1e-4 || p.position.x - p.radius < 0.0025) continue;
+    p.id = ParticleId(clear.size());
+    p.velocity = {0, 0, -0.6};
+    clear.push_back(p);
+  }
+  s.particles = clear;
+  Wall orifice = plane_wall({0.01, 0.01, 0.008}, {0, 0, 1});
+  orifice.kind = WallKind::plate;
+  orifice.radius = 0.03;
+  orifice.hole_half[0] = 0.004;
+  Wall gate = plane_wall({0.01, 0.01, 0.004}, {0, 0, 1});
+  gate.kind = WallKind::plate;
+  gate.radius = 0.009;
+  Wall cone = plane_wall({0.01, 0.01, 0.0}, {0, 0, 1});
+  cone.kind = WallKind::cone;
+  cone.radius = 0.006;
+  cone.length = 0.04;
+  cone.end_radius = 0.015;
+  s.walls[0].point.x = 0.002;  // the side wall pushed in from x = 0.002 by the table
+  for (const Wall& w : {orifice, gate, cone}) s.walls.push_back(w);
+  s.wall_timelines.resize(s.walls.size());
+  s.wall_timelines[0].velocity = make_rate_table({0, 0.005, 0.01}, {Vec3d(), Vec3d(0.05, 0, 0), Vec3d()});
+  Timeline& g = s.wall_timelines[s.walls.size() - 2];
+  g.active.until = 0.012;
+  g.oscillation.amplitude = {0, 0, 0.0003};
+  g.oscillation.frequency = 60;
+  expect_rank_independent(s, 1000);
+}
+
 // Two lattices flying into each other across the slab boundary (no gravity,
 // no walls): particles stream through the boundary in both directions,
 // collide on both sides of it, and keep their friction history as they cross.
