@@ -51,7 +51,7 @@ bool total_reached(const InletSpec& in, std::uint64_t count, double mass) {
 
 bool clear_of_walls(const Vec3d& c, double r, const std::vector<Wall>& walls) {
   for (const Wall& w : walls)
-    if (wall_penetration(w, c, r) > 0) return false;
+    if (w.active && wall_penetration(w, c, r) > 0) return false;  // an open gate is no obstacle
   return true;
 }
 
