@@ -16,10 +16,10 @@ void add(Histogram& total, const Histogram& part) {
   for (std::size_t i = 0; i < total.size(); ++i) total[i] += part[i];
 }
 
-// The decomposition the positions fed by `blocks` call for; `shared`: each
-// rank fed its share only, so the counts are summed over the ranks.
+// The decomposition the positions fed by `blocks` call for: each rank feeds
+// its share only, and the counts are summed over the ranks.
 std::unique_ptr<Decomposition> decompose(const SceneSpec& scene, Transport& transport, double range,
-                                         const PositionBlocks& blocks, bool shared) {
+                                         const PositionBlocks& blocks) {
   const DecompositionSpec& spec = scene.decomposition;
   const int ranks = transport.size();
   if (spec.method == DecompositionMethod::metis) {
@@ -27,14 +27,14 @@ std::unique_ptr<Decomposition> decompose(const SceneSpec& scene, Transport& tran
         CoarseGrid::make(scene.domain_min, scene.domain_max, range, MetisDecomposition::kDefaultMaxCells);
     Histogram cells(std::size_t(grid.n_cells()), 0);
     blocks([&](const std::vector<Vec3d>& x) { add(cells, cell_histogram(grid, x)); });
-    if (shared) transport.sum(cells);
+    transport.sum(cells);
     return std::make_unique<MetisDecomposition>(grid, ranks, cells);
   }
   const CoarseGrid grid = CoarseGrid::make(scene.domain_min, scene.domain_max, range);
   if (spec.axis >= 0 && spec.axis <= 2) {
     Histogram layers(std::size_t(grid.dims[std::size_t(spec.axis)]), 0);
     blocks([&](const std::vector<Vec3d>& x) { add(layers, layer_histogram(grid, spec.axis, x)); });
-    if (shared) transport.sum(layers);
+    transport.sum(layers);
     return std::make_unique<SlabDecomposition>(grid, ranks, spec.axis, layers);
   }
   LayerHistograms layers;
@@ -43,16 +43,14 @@ std::unique_ptr<Decomposition> decompose(const SceneSpec& scene, Transport& tran
     const LayerHistograms part = layer_histograms(grid, x);
     for (std::size_t a = 0; a < 3; ++a) add(layers[a], part[a]);
   });
-  if (shared)
-    for (Histogram& h : layers) transport.sum(h);
+  for (Histogram& h : layers) transport.sum(h);
   return std::make_unique<SlabDecomposition>(SlabDecomposition::from_histograms(grid, ranks, spec.axis, layers));
 }
 
-std::shared_ptr<DomainExchange> split(const SceneSpec& scene, Transport& transport, const PositionBlocks& blocks,
-                                      bool shared) {
+std::shared_ptr<DomainExchange> split(const SceneSpec& scene, Transport& transport, const PositionBlocks& blocks) {
   // Ghosts reach one largest diameter, the widest contact.
   const double range = 2 * largest_radius(scene);
-  return std::make_shared<DomainExchange>(transport, decompose(scene, transport, range, blocks, shared), range,
+  return std::make_shared<DomainExchange>(transport, decompose(scene, transport, range, blocks), range,
                                           scene.decomposition, periodic_box(scene));
 }
 
@@ -65,13 +63,13 @@ std::shared_ptr<DomainExchange> split_scene(const SceneSpec& scene, Transport& t
   const PositionBlocks mine = [&](const std::function<void(const std::vector<Vec3d>&)>& use) {
     for_each_position_block(scene, first, last, use);
   };
-  return split(scene, transport, mine, true);
+  return split(scene, transport, mine);
 }
 
 std::shared_ptr<DomainExchange> split_restart(const SceneSpec& scene, Transport& transport,
-                                              const std::vector<Vec3d>& positions) {
-  const PositionBlocks all = [&](const std::function<void(const std::vector<Vec3d>&)>& use) { use(positions); };
-  return split(scene, transport, all, false);
+                                              const std::vector<Vec3d>& share) {
+  const PositionBlocks mine = [&](const std::function<void(const std::vector<Vec3d>&)>& use) { use(share); };
+  return split(scene, transport, mine);
 }
 
 }  // namespace gs

@@ -17,9 +17,10 @@ namespace gs {
 // decomposition, are those of all positions on one rank. Collective.
 std::shared_ptr<DomainExchange> split_scene(const SceneSpec& scene, Transport& transport);
 
-// A restart: every rank holds all the checkpoint's positions and computes
-// the same decomposition from them.
+// A restart: each rank holds its share of the checkpoint's positions (any
+// split of them over the ranks); the counts are summed as for a new run.
+// Collective.
 std::shared_ptr<DomainExchange> split_restart(const SceneSpec& scene, Transport& transport,
-                                              const std::vector<Vec3d>& positions);
+                                              const std::vector<Vec3d>& share);
 
 }  // namespace gs

@@ -35,6 +35,11 @@ int command_check(const std::vector<std::string>& args) {
   if (scene.meshes.n_meshes() > 0)
     std::printf("meshes:         %d triangles, %s with their binning (%.3g cells, up to %.3g entries)\n",
                 int(scene.meshes.n_triangles()), human_bytes(m.mesh_bytes).c_str(), m.mesh_cells, m.mesh_entries);
+  if (const Exits exits = exits_of(scene.outlets, scene.open_faces); exits.any()) {
+    std::string names;
+    for (const std::string& n : exits.names) names += (names.empty() ? "" : ", ") + n;
+    std::printf("exits:          %s (what leaves goes to removed.csv)\n", names.c_str());
+  }
   return 0;
 }
 

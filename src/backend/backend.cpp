@@ -1,6 +1,9 @@
 #define GS_CUDA_HOST_CODE
 #include "backend/backend.hpp"
 
+#include <sched.h>
+#include <omp.h>
+
 #include <stdexcept>
 
 #include "backend/check.hpp"
@@ -43,6 +46,15 @@ bool select_cuda_device(int local_rank) {
   (void)local_rank;
   return false;
 #endif
+}
+
+HostThreads host_threads() {
+  HostThreads h;
+  h.threads = omp_get_max_threads();
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  h.cores = sched_getaffinity(0, sizeof(set), &set) == 0 ? CPU_COUNT(&set) : h.threads;
+  return h;
 }
 
 Backend default_backend() { return cuda_device_available() ? Backend::cuda : Backend::cpu; }

@@ -11,9 +11,17 @@ const char* backend_name(Backend b);
 bool cuda_backend_built();     // compiled with the CUDA backend
 bool cuda_device_available();  // built with CUDA and a device is present
 Backend default_backend();     // cuda when a device is available, else cpu
-// Binds this process to GPU local_rank mod the device count (one rank per GPU).
 // Binds this process to device local_rank mod the device count; returns
 // true when that leaves it a device of its own (local_rank < count).
 bool select_cuda_device(int local_rank);
+
+// The host threads this process runs its OpenMP loops on (OMP_NUM_THREADS or
+// the default), and the cores its CPU affinity lets them use. mpirun binds
+// each rank to one core by default, and every thread then shares that core.
+struct HostThreads {
+  int threads = 1;
+  int cores = 1;
+};
+HostThreads host_threads();
 
 }  // namespace gs

@@ -1,4 +1,5 @@
 #pragma once
+#include <cassert>
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -51,6 +52,12 @@ class DeviceArray {
   void from_host(const std::vector<T>& h) {
     resize(h.size());
     if (!h.empty()) backend_copy_from_host(backend_, data_, h.data(), h.size() * sizeof(T));
+  }
+
+  // Copies `count` host values into [at, at + count), which must lie within size().
+  void from_host(const T* h, std::size_t count, std::size_t at) {
+    assert(at + count <= size_);
+    if (count > 0) backend_copy_from_host(backend_, data_ + at, h, count * sizeof(T));
   }
 
   T* data() { return data_; }

@@ -2,8 +2,10 @@
 // Particles on the host as output, analysis and restarts see them: what the
 // engine hands to the layers above it, so that they need not know the engine.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
+#include "core/insertion_state.hpp"
 #include "core/particle_records.hpp"
 
 namespace gs {
@@ -28,6 +30,7 @@ struct RestartState {
   double time = 0;
   ParticleRecords particles;
   std::vector<Vec3d> force, torque;  // in `particles` order
+  std::optional<InsertionState> insertion;  // a run with inlets: where their insertion stood
 };
 
 }  // namespace gs

@@ -4,6 +4,7 @@
 // compiled per backend, force precision, contact model and set of effects.
 #include <vector>
 
+#include "core/contact_measure.hpp"
 #include "engine/particle_store.hpp"
 #include "walls/mesh.hpp"
 #include "walls/wall.hpp"
@@ -26,6 +27,11 @@ class ForceComputation {
   // Load of each owned particle (store order) on each mesh, entry
   // i * n_meshes + m, from the last computation; empty without meshes.
   virtual std::vector<MeshLoad> particle_mesh_loads(const ParticleStore& s) const = 0;
+  // The measurements' contact pass (engine/contact_measure_kernel.hpp), right
+  // after compute() at the same state; then its result per owned particle
+  // (store order). Reads the forces' inputs and history, writes neither.
+  virtual void measure_contacts(ParticleStore& s, long long step) = 0;
+  virtual std::vector<ContactMeasure> contact_measures(const ParticleStore& s) const = 0;
   virtual std::size_t bytes() const = 0;  // pair table, walls, meshes
 };
 

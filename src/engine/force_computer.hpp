@@ -4,6 +4,7 @@
 // (engine/force_kernel.hpp) over the neighbours of the run's NeighbourFinder.
 #include <vector>
 
+#include "engine/contact_measure_kernel.hpp"
 #include "engine/force_kernel.hpp"
 #include "engine/force_computation.hpp"
 #include "engine/mesh_arrays.hpp"
@@ -51,18 +52,21 @@ class ForceComputer final : public ForceComputation {
 
   void compute(ParticleStore& s, double dt, long long step) override {
     meshes_.reserve(std::size_t(s.size()));
-    if constexpr (Exec::verlet_list) {
-      if (neighbours_.list_valid(s)) {
-        launch(s, neighbours_.list_candidates(), dt, step);
-      } else {
-        // NeighbourSearch::build_for_one_step: the cells of the whole store.
-        launch(s, TouchingInIdOrder{neighbours_.cell_candidates(s), s.position.data(), s.radius.data(),
-                                    s.id.data(), st_.fault.data(), step},
-               dt, step);
-      }
-    } else {
-      launch(s, neighbours_.cell_candidates(s), dt, step);
-    }
+    with_candidates(s, step, [&](const auto& candidates) { Exec::parallel_for(s.n_owned, kernel(s, candidates, dt, step)); });
+  }
+
+  void measure_contacts(ParticleStore& s, long long step) override {
+    measures_.resize(std::size_t(s.n_owned));
+    with_candidates(s, step, [&](const auto& candidates) {
+      using Candidates = std::decay_t<decltype(candidates)>;
+      Exec::parallel_for(s.n_owned, ContactMeasureKernel<Real, Model, Effects, Candidates>{
+                                        kernel(s, candidates, 0.0, step), measures_.data()});
+    });
+  }
+  std::vector<ContactMeasure> contact_measures(const ParticleStore& s) const override {
+    std::vector<ContactMeasure> h = measures_.to_host();
+    h.resize(std::size_t(s.n_owned));
+    return h;
   }
 
   std::vector<MeshLoad> particle_mesh_loads(const ParticleStore& s) const override {
@@ -74,21 +78,34 @@ class ForceComputer final : public ForceComputation {
     return h;
   }
   std::size_t bytes() const override {
-    return pairs_.bytes() + walls_.bytes() + wall_screens_.bytes() + meshes_.bytes();
+    return pairs_.bytes() + walls_.bytes() + wall_screens_.bytes() + meshes_.bytes() + measures_.bytes();
   }
 
  private:
+  // Calls f with the contact partners the force computation visits: the
+  // Verlet list while it is valid, else the cells (in id order on a CPU).
+  template <class F>
+  void with_candidates(ParticleStore& s, long long step, F&& f) {
+    if constexpr (Exec::verlet_list) {
+      if (neighbours_.list_valid(s)) {
+        f(neighbours_.list_candidates());
+      } else {
+        // NeighbourSearch::build_for_one_step: the cells of the whole store.
+        f(TouchingInIdOrder{neighbours_.cell_candidates(s), s.position.data(), s.radius.data(), s.id.data(),
+                            st_.fault.data(), step});
+      }
+    } else {
+      f(neighbours_.cell_candidates(s));
+    }
+  }
   template <class Candidates>
-  void launch(ParticleStore& s, const Candidates& candidates, double dt, long long step) {
-    ForceKernel<Real, Model, Effects, Candidates> k{s.id.data(), s.material.data(), s.radius.data(), s.mass.data(),
-                                                    s.position.data(), s.velocity.data(),
-                                                    s.angular_velocity.data(), candidates, neighbours_.box(),
-                                                    PairTable<Real, Model>{pairs_.data(), n_materials_}, walls_.data(),
-                                                    wall_screens_.data(), n_walls_, meshes_.view(), meshes_.loads(),
-                                                    slot_table(), st_.forces.force.data(),
-                                                    kTorque ? st_.forces.torque.data() : nullptr, Real(dt),
-                                                    st_.fault.data(), step};
-    Exec::parallel_for(s.n_owned, k);
+  ForceKernel<Real, Model, Effects, Candidates> kernel(ParticleStore& s, const Candidates& candidates, double dt,
+                                                       long long step) {
+    return {s.id.data(), s.material.data(), s.radius.data(), s.mass.data(), s.position.data(), s.velocity.data(),
+            s.angular_velocity.data(), candidates, neighbours_.box(),
+            PairTable<Real, Model>{pairs_.data(), n_materials_}, walls_.data(), wall_screens_.data(), n_walls_,
+            meshes_.view(), meshes_.loads(), slot_table(),
+            st_.forces.force.data(), kTorque ? st_.forces.torque.data() : nullptr, Real(dt), st_.fault.data(), step};
   }
   SlotTable<Real, kKept> slot_table() {
     ContactHistory<Real>& h = st_.history;
@@ -110,6 +127,7 @@ class ForceComputer final : public ForceComputation {
   DeviceMeshes meshes_;
   StepState<Real>& st_;
   const NeighbourFinder<Exec>& neighbours_;
+  DeviceArray<ContactMeasure> measures_{Exec::backend};  // the contact pass's, sized at its first use
 };
 
 }  // namespace gs

@@ -95,6 +95,49 @@ struct ForceKernel {
     if constexpr (kTorque) torque[i] = total.torque;
   }
 
+  // Whether particles i (at xi) and j overlap, and if so the kinematics of
+  // their contact as seen from i. Public for the measurements' contact pass
+  // (engine/contact_measure_kernel.hpp), which must see the same contacts.
+  GS_HD GS_INLINE bool particle_kinematics(Index i, Index j, const Vec3d& xi, ContactKinematics<Real>& k) const {
+    const Vec3d d = box.separation(xi, position[j]);  // to the nearest image on the axes that wrap
+    const double reach = double(radius[i]) + double(radius[j]);
+    const double distance2 = norm2(d);
+    if (distance2 >= reach * reach) return false;
+    const double distance = std::sqrt(distance2);
+    k.overlap = Real(reach - distance);
+    k.normal = Vec3<Real>(d) * (Real(1) / Real(distance));  // a unit vector needs no more than force precision
+    const Real ri = radius[i], rj = radius[j];
+    const Real lever_i = ri - Real(0.5) * k.overlap, lever_j = rj - Real(0.5) * k.overlap;
+    const Vec3<Real> wi(angular_velocity[i]), wj(angular_velocity[j]);
+    k.velocity = Vec3<Real>(velocity[i] - velocity[j]) - cross(mul_add(wi, lever_i, wj * lever_j), k.normal);
+    k.angular_velocity = wi - wj;
+    const Real mi = mass[i], mj = mass[j];
+    k.effective_mass = mi * mj / (mi + mj);
+    k.effective_radius = ri * rj / (ri + rj);
+    k.lever = lever_i;
+    return true;
+  }
+
+  // Particle i against a rigid surface (an analytic wall or a mesh feature)
+  // whose material moves at surface_velocity at the contact point and turns
+  // at surface_angular_velocity: the surface acts as a partner of infinite
+  // mass and radius.
+  GS_HD ContactKinematics<Real> surface_kinematics(Index i, double overlap, const Vec3d& normal,
+                                                   const Vec3d& surface_velocity,
+                                                   const Vec3d& surface_angular_velocity) const {
+    ContactKinematics<Real> k;
+    k.overlap = Real(overlap);
+    k.normal = Vec3<Real>(normal);
+    const Real ri = radius[i];
+    k.lever = ri - k.overlap;
+    const Vec3<Real> wi(angular_velocity[i]);
+    k.velocity = Vec3<Real>(velocity[i] - surface_velocity) - cross(wi * k.lever, k.normal);
+    k.angular_velocity = wi - Vec3<Real>(surface_angular_velocity);
+    k.effective_mass = mass[i];
+    k.effective_radius = ri;
+    return k;
+  }
+
  private:
   // Visitor of the candidate source: one possible partner j of particle i.
   struct ParticleVisitor {
@@ -172,44 +215,9 @@ struct ForceKernel {
 
   GS_HD GS_INLINE void add_particle_contact(Index i, Index j, const Vec3d& xi, ContactLoad<Real>& total,
                                   unsigned& touched) const {
-    const Vec3d d = box.separation(xi, position[j]);
-    const double reach = double(radius[i]) + double(radius[j]);
-    const double distance2 = norm2(d);
-    if (distance2 >= reach * reach) return;
-    const double distance = std::sqrt(distance2);
     ContactKinematics<Real> k;
-    k.overlap = Real(reach - distance);
-    k.normal = Vec3<Real>(d) * (Real(1) / Real(distance));  // a unit vector needs no more than force precision
-    const Real ri = radius[i], rj = radius[j];
-    const Real lever_i = ri - Real(0.5) * k.overlap, lever_j = rj - Real(0.5) * k.overlap;
-    const Vec3<Real> wi(angular_velocity[i]), wj(angular_velocity[j]);
-    k.velocity = Vec3<Real>(velocity[i] - velocity[j]) - cross(mul_add(wi, lever_i, wj * lever_j), k.normal);
-    k.angular_velocity = wi - wj;
-    const Real mi = mass[i], mj = mass[j];
-    k.effective_mass = mi * mj / (mi + mj);
-    k.effective_radius = ri * rj / (ri + rj);
-    k.lever = lever_i;
+    if (!particle_kinematics(i, j, xi, k)) return;
     apply(i, id[j], pairs(material[i], material[j]), k, total, touched);
-  }
-
-  // Particle i against a rigid surface (an analytic wall or a mesh feature)
-  // whose material moves at surface_velocity at the contact point and turns
-  // at surface_angular_velocity: the surface acts as a partner of infinite
-  // mass and radius.
-  GS_HD ContactKinematics<Real> surface_kinematics(Index i, double overlap, const Vec3d& normal,
-                                                   const Vec3d& surface_velocity,
-                                                   const Vec3d& surface_angular_velocity) const {
-    ContactKinematics<Real> k;
-    k.overlap = Real(overlap);
-    k.normal = Vec3<Real>(normal);
-    const Real ri = radius[i];
-    k.lever = ri - k.overlap;
-    const Vec3<Real> wi(angular_velocity[i]);
-    k.velocity = Vec3<Real>(velocity[i] - surface_velocity) - cross(wi * k.lever, k.normal);
-    k.angular_velocity = wi - Vec3<Real>(surface_angular_velocity);
-    k.effective_mass = mass[i];
-    k.effective_radius = ri;
-    return k;
   }
 
   GS_HD void add_wall_contact(Index i, int w, const Vec3d& xi, ContactLoad<Real>& total, unsigned& touched) const {

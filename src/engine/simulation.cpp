@@ -8,6 +8,8 @@
 #include "contact/contact_time.hpp"
 #include "contact/contact_models.hpp"
 #include "core/wall_clock.hpp"
+#include "engine/insertion.hpp"
+#include "engine/particle_init.hpp"
 #include "scene/particle_sources.hpp"
 #include "scene/position_resolution.hpp"
 #include "walls/wall_motion.hpp"
@@ -35,12 +37,15 @@ std::vector<T> permuted(const std::vector<T>& v, const std::vector<std::size_t>&
 Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::shared_ptr<RankExchange> exchange)
     : scene_(without_particles(scene)), options_(options), exchange_(std::move(exchange)) {
   set_up(scene);
+  insertion_ = initial_insertion_state(scene.inlets.size(), gs::particle_count(scene));
   move_walls(0.0);
   pose_meshes(0.0);
   // Each rank generates only the particles it owns (lattices site by site).
   const auto t0 = Clock::now();
   RankExchange* split = exchange_.get();
-  upload(scene, [split](const Vec3d& x) { return !split || split->owns(x); });
+  std::function<bool(const Vec3d&)> keep;  // empty: every particle (one rank)
+  if (split) keep = [split](const Vec3d& x) { return split->owns(x); };
+  upload(scene, keep);
   if (exchange_) exchange_->refresh_ghosts(store_, kernels_->movement());
   kernels_->synchronize();
   setup_timings_.particles = seconds_since(t0);
@@ -56,6 +61,7 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
                        const RestartState& restart)
     : scene_(without_particles(scene)), options_(options), exchange_(std::move(exchange)) {
   set_up(scene);
+  insertion_ = restart.insertion ? *restart.insertion : initial_insertion_state(scene.inlets.size(), gs::particle_count(scene));
   restore(restart);
   if (exchange_) exchange_->refresh_ghosts(store_, kernels_->movement());
   rebuild_neighbours();
@@ -76,14 +82,21 @@ void Simulation::set_up(const SceneSpec& scene) {
   skin_ = kernels_->neighbours().uses_verlet_list() ? options_.verlet_skin * diameter : 0.0;
   grid_ = make_cell_grid(scene.domain_min, scene.domain_max, diameter + skin_, periodic_box(scene));
   walls_ = scene.walls;
-  for (const Wall& w : walls_) walls_move_ = walls_move_ || norm2(w.velocity) > 0 || norm2(w.angular_velocity) > 0;
+  removes_ = scene.has_exits();
+  if (removes_)
+    kernels_->removal().set_exits(exits_of(scene.outlets, scene.open_faces), scene.domain_min, scene.domain_max);
+  for (std::size_t k = 0; k < walls_.size(); ++k) {
+    const Wall& w = walls_[k];
+    walls_move_ = walls_move_ || norm2(w.velocity) > 0 || norm2(w.angular_velocity) > 0 ||
+                  !timeline_of(scene.wall_timelines, k).none();
+  }
   meshes_ = scene.meshes;
   if (meshes_.n_triangles() > 0) {
     if (meshes_.n_triangles() >= kMaxMeshFeatures || meshes_.n_vertices() >= kMaxMeshFeatures ||
         meshes_.n_edges >= kMaxMeshFeatures)
       throw std::runtime_error("the scene's meshes have more than 2^28 triangles, edges or vertices");
     for (const MeshMotion& m : meshes_.motion)
-      meshes_move_ = meshes_move_ || norm2(m.velocity) > 0 || norm2(m.angular_velocity) > 0;
+      meshes_move_ = meshes_move_ || norm2(m.velocity) > 0 || norm2(m.angular_velocity) > 0 || !m.timeline.none();
     kernels_->forces().set_meshes(meshes_);
     // Bins in each mesh's own frame: binned once, whatever the motion.
     kernels_->forces().set_mesh_bins(bin_triangles(meshes_, grid_.cell_size, run_binning(grid_.cell_size)));
@@ -130,44 +143,37 @@ void Simulation::restore(const RestartState& r) {
 
 // The owned particles go straight from the generators into host copies of
 // the store's fields (filled on every thread, no list of particles between),
-// which live only until they are uploaded.
+// a block at a time, each uploaded to its place before the next is made: the
+// host holds one block, not the rank's particles.
 void Simulation::upload(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep) {
+  constexpr std::size_t kBlock = std::size_t(1) << 22;
   ParticleRecords host;
-  const std::vector<MaterialSpec>& materials = scene_.materials;
-  // fp32 state: positions and velocities start on the fp32 grid they live on.
-  const bool fp32 = fp32_state(scene_.precision);
-  auto state = [fp32](const Vec3d& v) { return fp32 ? on_fp32_grid(v) : v; };
-  for_each_selected(
-      scene, keep,
+  const bool fp32 = fp32_state(scene_.precision);  // positions and velocities start on the fp32 grid they live on
+  for_each_selected_block(
+      scene, keep, kBlock,
       [&](std::size_t n) {
-        for_each_kept_particle_field(host, store_.fields_kept, [n](const char*, auto& field) { field.resize(n); });
+        store_.resize_arrays(n);
+        store_.n_owned = Index(n);
+        const std::size_t held = std::min(n, kBlock);
+        // Only the fields the run keeps: the others stay empty (set_particle leaves them be).
+        for_each_kept_particle_field(host, store_.fields_kept,
+                                     [held](const char*, auto& field) { field.resize(held); });
       },
-      [&](std::size_t k, const ParticleInit& p) {
-        const double m = sphere_mass(p.radius, materials[std::size_t(p.material)].density);
-        host.id[k] = p.id;
-        host.material[k] = std::uint8_t(p.material);
-        host.marker[k] = p.marker;
-        host.radius[k] = float(p.radius);
-        host.mass[k] = float(m);
-        host.inertia[k] = float(0.4 * m * p.radius * p.radius);
-        host.position[k] = state(p.position);
-        host.velocity[k] = state(p.velocity);
-        host.angular_velocity[k] = state(p.angular_velocity);
-        host.orientation[k] = Quaternion{1, 0, 0, 0};
+      [&](std::size_t k, const ParticleInit& p) { set_particle(host, k, p, scene_.materials, fp32); },
+      [&](std::size_t first, std::size_t count) {
+        for_each_kept_particle_field(store_, host, store_.fields_kept,
+                                     [first, count](const char*, auto& field, const auto& from) {
+                                       field.from_host(from.data(), count, first);
+                                     });
       });
-  const std::size_t n = host.id.size();
-  for_each_particle_field(store_, host, [](const char*, auto& field, auto& from) {
-    field.from_host(from);
-    std::decay_t<decltype(from)>().swap(from);  // one host copy less to hold
-  });
-  store_.n_owned = Index(n);
   store_.n_ghost = 0;
   ++store_.revision;
-  kernels_->movement().reserve(Index(n));
+  kernels_->movement().reserve(store_.n_owned);
 }
 
 void Simulation::move_walls(double t) {
-  for (std::size_t k = 0; k < walls_.size(); ++k) walls_[k] = wall_at(scene_.walls[k], t);
+  for (std::size_t k = 0; k < walls_.size(); ++k)
+    walls_[k] = wall_at(scene_.walls[k], timeline_of(scene_.wall_timelines, k), t);
   kernels_->forces().set_walls(walls_);
 }
 
@@ -208,7 +214,7 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
   const auto start = Clock::now();
   const double dt = scene_.time_step;
   IntegrationParams p{dt, scene_.gravity, scene_.domain_min, scene_.domain_max, 0.5 * grid_.cell_size, 0,
-                      fp32_state(scene_.precision), periodic_box(scene_)};
+                      fp32_state(scene_.precision), scene_.open_faces, periodic_box(scene_)};
   for (long long s = 0; s < steps; ++s) {
     // A timed step starts with an idle device, so it is charged only its own work.
     if (step_ % kTimedEvery == 0) kernels_->synchronize();
@@ -218,6 +224,8 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
     kernels_->integration().kick_drift(store_, p);
     if (walls_move_) move_walls(time_ + dt);
     if (meshes_move_) pose_meshes(time_ + dt);
+    // Removed where the drift took them, before they can migrate or touch anything.
+    if (removes_) kernels_->removal().remove(store_, p.step, removed_);
     timings_.integrate += phase_seconds(t0);
     if (exchange_) step_particles_between_ranks();
 
@@ -245,12 +253,14 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
 
     t0 = Clock::now();
     kernels_->forces().compute(store_, dt, p.step);
+    if (p.step == contact_measure_step_) measure_contacts();
     timings_.forces += phase_seconds(t0);
     t0 = Clock::now();
     kernels_->integration().kick(store_, p);
     timings_.integrate += phase_seconds(t0);
     ++step_;
     time_ = double(step_) * dt;
+    if (!scene_.inlets.empty()) insert_due();
     if (options_.fault_check_interval > 0 && step_ % options_.fault_check_interval == 0) check_fault();
     if (stop_after_step && stop_after_step()) break;
   }
@@ -311,6 +321,31 @@ ParticleSnapshot Simulation::snapshot() const {
   s.torque = permuted(kernels_->movement().torques(store_), order);
   if (keeps_history(scene_.model, scene_.effects)) s.contacts = permuted(kernels_->movement().contact_counts(store_), order);
   return s;
+}
+
+void Simulation::measure_contacts_at(long long step) {
+  contact_measure_step_ = step;
+  if (step == step_) measure_contacts();
+}
+
+void Simulation::measure_contacts() {
+  const auto t0 = Clock::now();
+  kernels_->forces().measure_contacts(store_, contact_measure_step_);
+  kernels_->synchronize();  // only at the steps a measurement is due
+  contact_pass_seconds_ += seconds_since(t0);
+  measured_step_ = contact_measure_step_;
+}
+
+std::vector<ContactMeasure> Simulation::contact_measures() const {
+  if (measured_step_ != step_)
+    throw std::logic_error("no contact pass at step " + std::to_string(step_) + " (measure_contacts_at before the run)");
+  kernels_->synchronize();
+  const std::vector<ContactMeasure> m = kernels_->forces().contact_measures(store_);
+  const std::vector<ParticleId> id = store_.id.to_host();
+  std::vector<std::size_t> order(m.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
+  return permuted(m, order);
 }
 
 ParticleRecords Simulation::wall_contact_history() const {

@@ -6,8 +6,10 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "core/insertion_state.hpp"
 #include "core/particle_snapshot.hpp"
 #include "engine/rank_exchange.hpp"
 #include "engine/step_kernels.hpp"
@@ -47,6 +49,9 @@ class Simulation {
   // Throws SimulationFault when a kernel has reported a fault since the last
   // check. Collective with several ranks (the fault of the lowest failing rank).
   void check_fault();
+  // The particles this rank removed at the scene's exits since the last call,
+  // in the order they were found (by step, then in store order).
+  std::vector<RemovedParticle> take_removed() { return std::exchange(removed_, {}); }
   // Sets every owned particle's marker by its side of the plane, now.
   void mark(const MarkingSpec& m) { kernels_->mark_by_plane(store_, m); }
   double time() const { return time_; }
@@ -66,6 +71,13 @@ class Simulation {
   std::vector<MeshLoad> mesh_loads() const;
 
   ParticleSnapshot snapshot() const;  // this rank's owned particles
+  // The measurements' contact pass (engine/contact_measure_kernel.hpp) at
+  // `step`: after that step's force computation, or now when the simulation
+  // is at it. Its result, per owned particle in snapshot (id) order
+  // (std::logic_error unless the pass ran at the current step).
+  void measure_contacts_at(long long step);
+  std::vector<ContactMeasure> contact_measures() const;
+  double contact_pass_seconds() const { return contact_pass_seconds_; }  // wall time of every pass so far
   HostHistory history() const;  // in snapshot (id) order
   // Ids (ascending) and history of the particles with a stored wall contact.
   ParticleRecords wall_contact_history() const;
@@ -79,6 +91,10 @@ class Simulation {
     double first_forces = 0;  // the first neighbour search and force computation
   };
   const SetupTimings& setup_timings() const { return setup_timings_; }
+  // Where the inlets' insertion stands (checkpoints keep it), and the batches
+  // inserted since the last call (simulation_insertion.cpp).
+  const InsertionState& insertion() const { return insertion_; }
+  std::vector<InsertionRecord> take_insertion_records() { return std::exchange(insertion_records_, {}); }
 
  private:
   void set_up(const SceneSpec& scene);
@@ -87,6 +103,9 @@ class Simulation {
   void move_walls(double t);
   void pose_meshes(double t);
   void rebuild_neighbours();
+  void insert_due();
+  void append_inserted(const std::vector<ParticleInit>& inserted);
+  void measure_contacts();  // the contact pass, now
   void step_particles_between_ranks();
   double phase_seconds(std::chrono::steady_clock::time_point start) const;
   static constexpr long long kTimedEvery = 16;  // steps between timed ones
@@ -105,9 +124,16 @@ class Simulation {
   double time_ = 0;
   long long step_ = 0;
   long long last_reorder_ = 0;  // step of the last memory re-sort
+  long long contact_measure_step_ = -1;  // the step of the next contact pass; -1: none
+  long long measured_step_ = -1;         // the step of the last one
+  double contact_pass_seconds_ = 0;
   StepTimings timings_;  // sampled: the timed steps' phases
   double run_seconds_ = 0;  // all of run(), measured
   SetupTimings setup_timings_;
+  bool removes_ = false;  // the scene has exits (outlets or open faces)
+  std::vector<RemovedParticle> removed_;  // since the last take_removed()
+  InsertionState insertion_;
+  std::vector<InsertionRecord> insertion_records_;
 };
 
 }  // namespace gs

@@ -13,6 +13,7 @@
 #include "engine/integration.hpp"
 #include "engine/neighbour_search.hpp"
 #include "engine/particle_movement.hpp"
+#include "engine/particle_removal.hpp"
 #include "scene/scene.hpp"
 
 namespace gs {
@@ -37,6 +38,7 @@ class StepKernels {
   virtual ForceComputation& forces() = 0;
   virtual const ForceComputation& forces() const = 0;
   virtual Integration& integration() = 0;
+  virtual ParticleRemoval& removal() = 0;  // particles that reached an exit (engine/particle_removal.hpp)
 
   // Sets the marker of each owned particle by its side of the plane.
   virtual void mark_by_plane(ParticleStore& s, const MarkingSpec& m) = 0;

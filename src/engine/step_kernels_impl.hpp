@@ -9,6 +9,7 @@
 #include "engine/integrator.hpp"
 #include "engine/neighbour_finder.hpp"
 #include "engine/particle_mover.hpp"
+#include "engine/particle_remover.hpp"
 #include "engine/step_kernels.hpp"
 
 namespace gs {
@@ -34,7 +35,8 @@ class StepKernelsOf final : public StepKernels {
  public:
   StepKernelsOf(const KernelChoice& c, const ContactInputs& in)
       : state_(Exec::backend, history_fields_kept(c.model, c.effects), makes_torques(c.effects), in.contact_slots),
-        mover_(state_), integrator_(state_), forces_(dispatch_forces<Exec, Real>(c, in, state_, finder_)) {}
+        mover_(state_), remover_(mover_), integrator_(state_),
+        forces_(dispatch_forces<Exec, Real>(c, in, state_, finder_)) {}
 
   ParticleMovement& movement() override { return mover_; }
   const ParticleMovement& movement() const override { return mover_; }
@@ -42,6 +44,7 @@ class StepKernelsOf final : public StepKernels {
   ForceComputation& forces() override { return *forces_; }
   const ForceComputation& forces() const override { return *forces_; }
   Integration& integration() override { return integrator_; }
+  ParticleRemoval& removal() override { return remover_; }
 
   void mark_by_plane(ParticleStore& s, const MarkingSpec& m) override {
     Exec::parallel_for(s.n_owned, MarkByPlane{s.position.data(), s.marker.data(), m.point, m.normal, m.front, m.back});
@@ -52,12 +55,15 @@ class StepKernelsOf final : public StepKernels {
     return f;
   }
   void synchronize() const override { Exec::synchronize(); }
-  std::size_t bytes() const override { return mover_.bytes() + finder_.bytes() + forces_->bytes(); }
+  std::size_t bytes() const override {
+    return mover_.bytes() + remover_.bytes() + finder_.bytes() + forces_->bytes();
+  }
 
  private:
   StepState<Real> state_;
   NeighbourFinder<Exec> finder_;
   ParticleMover<Exec, Real> mover_;
+  ParticleRemover<Exec> remover_;
   Integrator<Exec, Real> integrator_;
   std::unique_ptr<ForceComputation> forces_;
 };

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/fault.hpp"
+#include "core/domain_faces.hpp"
 #include "core/particle_fields.hpp"
 #include "core/periodic_box.hpp"
 
@@ -19,6 +20,9 @@ struct IntegrationParams {
   double max_displacement;  // per step; half a cell
   long long step;
   bool fp32_state;  // precision fp32_full: the state is kept on the fp32 grid
+  // Domain faces a particle may leave through (bits of core/domain_faces.hpp):
+  // beyond them it is removed after the drift, not a fault.
+  unsigned open_faces = 0;
   PeriodicBox box;  // the axes that wrap: a particle crossing their faces comes back at the other
 };
 
@@ -74,7 +78,9 @@ struct HalfKick {
 // Half kick, then drift of positions and orientation over a whole step, and
 // the checks that stop a run cleanly instead of letting it blow up. On a
 // periodic axis a particle that crossed a face is wrapped back into the
-// domain and its image count changes by one.
+// domain and its image count changes by one; then leaving the domain is a
+// fault only through a face that neither wraps nor is open (a particle beyond
+// an open face is removed after the drift; a face is never both).
 template <class Real>
 struct KickDrift {
   HalfKick<Real> kick;
@@ -97,20 +103,11 @@ struct KickDrift {
     if (!(std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(v.x) &&
           std::isfinite(v.y) && std::isfinite(v.z))) {
       report_fault(fault, kFaultNotFinite, id[i], p.step);
-    } else if (outside_on_axis(x.x, 0) || outside_on_axis(x.y, 1) || outside_on_axis(x.z, 2)) {
+    } else if ((faces_beyond(x, p.domain_lo, p.domain_hi) & ~p.open_faces & ~faces_of_axes(p.box.axes)) != 0) {
       report_fault(fault, kFaultLeftDomain, id[i], p.step);
     } else if (norm2(step) > p.max_displacement * p.max_displacement) {
       report_fault(fault, kFaultTooFast, id[i], p.step);
     }
-  }
-
- private:
-  // Outside the domain on a wall-bounded axis (a periodic one wraps instead).
-  GS_HD bool outside_on_axis(double x, int axis) const {
-    if (p.box.wraps(axis)) return false;
-    const double lo = axis == 0 ? p.domain_lo.x : axis == 1 ? p.domain_lo.y : p.domain_lo.z;
-    const double hi = axis == 0 ? p.domain_hi.x : axis == 1 ? p.domain_hi.y : p.domain_hi.z;
-    return x < lo || x > hi;
   }
 };
 

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "io/atomic_file.hpp"
+#include "io/checkpoint_insertion.hpp"
 #include "io/fnv1a.hpp"
 #include "io/h5_io.hpp"
 #include "io/h5_walls.hpp"
@@ -79,26 +80,33 @@ std::string checkpoint_h5_name(long long step) {
   return name;
 }
 
-std::uint64_t checkpoint_checksum(const Checkpoint& c) {
-  const ParticleSnapshot& p = c.particles;
-  const HostHistory& h = c.history;
-  Fnv1a64 sum;
+void add_checksum_header(Fnv1a64& sum, const Checkpoint& c, std::uint64_t particles,
+                         const std::vector<std::uint64_t>& history_rows) {
   sum.add_value(std::int32_t(kCheckpointFormatVersion));
   sum.add_value(std::int64_t(c.step));
   sum.add_value(c.time);
-  sum.add_value(std::int64_t(p.step));
-  sum.add_value(p.time);
+  sum.add_value(std::int64_t(c.particles.step));
+  sum.add_value(c.particles.time);
   sum.add_value(c.scene_hash);
   sum.add_value(std::int32_t(c.rank_count));
   sum.add_value(std::int32_t(c.decomposition_axis));
   sum.add_value(c.random_state);
-  sum.add_value(std::uint64_t(p.size()));
-  sum.add_value(std::int32_t(h.slots));
-  for_each_history_field(h, [&](const char*, unsigned bit, const auto& field) {
-    if ((bit & kFormat2HistoryFields) != 0 || !field.empty()) sum.add_value(std::uint64_t(field.size()));
-  });
+  sum.add_value(particles);
+  sum.add_value(std::int32_t(c.history.slots));
+  for (std::uint64_t rows : history_rows) sum.add_value(rows);
   sum.add_value(std::uint64_t(c.walls.size()));
   sum.add_value(std::uint64_t(c.decomposition_cuts.size()));
+}
+
+std::uint64_t checkpoint_checksum(const Checkpoint& c) {
+  const ParticleSnapshot& p = c.particles;
+  const HostHistory& h = c.history;
+  std::vector<std::uint64_t> history_rows;
+  for_each_history_field(h, [&](const char*, unsigned bit, const auto& field) {
+    if ((bit & kFormat2HistoryFields) != 0 || !field.empty()) history_rows.push_back(field.size());
+  });
+  Fnv1a64 sum;
+  add_checksum_header(sum, c, p.size(), history_rows);
   for_each_particle_field(p, [&](const char*, const auto& field) { sum.add_array(field); });
   sum.add_array(p.force);
   sum.add_array(p.torque);
@@ -109,6 +117,7 @@ std::uint64_t checkpoint_checksum(const Checkpoint& c) {
     sum.add(state.data(), sizeof(state));
   }
   sum.add_array(c.decomposition_cuts);
+  if (c.insertion) add_insertion(sum, *c.insertion);
   return sum.value();
 }
 
@@ -130,6 +139,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
     write_history(f, c.history, c.particles.size());
     write_walls(f, "walls", c.walls, {});
     write_decomposition(f, c);
+    if (c.insertion) write_insertion(f, *c.insertion);
     h5::write_attribute(f, "/", "checksum", checksum);
     // Last: a file without the marker was not finished.
     h5::write_attribute(f, "/", "complete", std::int32_t(1));

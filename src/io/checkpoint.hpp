@@ -7,12 +7,15 @@
 // 64-bit checksum over all data and a `complete` marker written last let
 // read_checkpoint refuse a damaged or unfinished file.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "core/insertion_state.hpp"
 #include "core/particle_snapshot.hpp"
+#include "io/fnv1a.hpp"
 #include "walls/wall.hpp"
 
 namespace gs {
@@ -40,6 +43,7 @@ struct Checkpoint {
   int decomposition_axis = 2;               // slab axis: 0 x, 1 y, 2 z; -1: not slabs
   std::vector<double> decomposition_cuts;   // slab bounds along the axis [m]; empty when not slabs
   std::uint64_t random_state = 0;
+  std::optional<InsertionState> insertion;  // a run with inlets only (io/checkpoint_insertion.hpp)
 };
 
 struct CheckpointExpectations {
@@ -52,6 +56,13 @@ std::string checkpoint_h5_name(long long step);
 // FNV-1a 64 over every value of c, in the order docs/OUTPUT.md gives.
 std::uint64_t checkpoint_checksum(const Checkpoint& c);
 
+// The checksum's values before the arrays: c's step, times, hashes and
+// decomposition, `particles` (N), the history slots, `history_rows` (the row
+// count of each history field the file stores, in field order) and the wall
+// and cut counts. Shared by checkpoint_checksum and the block-wise reader.
+void add_checksum_header(Fnv1a64& sum, const Checkpoint& c, std::uint64_t particles,
+                         const std::vector<std::uint64_t>& history_rows);
+
 // Throws std::invalid_argument when an array has the wrong length, and
 // h5::H5Error or std::runtime_error when writing fails (the previous file at
 // `path`, if any, is then untouched).
@@ -60,6 +71,23 @@ void write_checkpoint(const std::string& path, const Checkpoint& c);
 // Throws CheckpointError for a missing, truncated, unfinished or damaged file,
 // one that is not HDF5 or not a checkpoint, another format version, a
 // checksum mismatch, or a scene hash other than the expected one.
-Checkpoint read_checkpoint(const std::string& path, const CheckpointExpectations& expect = {});
+//
+// The arrays are read a block of particles at a time and the checksum is
+// computed over every block; `keep`, when given, selects by stored position
+// the particles the result holds (with their history rows, in file order), so
+// a rank of a restart holds its own particles only. Everything else (step,
+// time, walls, the decomposition) is read whole.
+Checkpoint read_checkpoint(const std::string& path, const CheckpointExpectations& expect = {},
+                           const std::function<bool(const Vec3d&)>& keep = {});
+
+// Calls use(first index, positions) for blocks of the stored positions of the
+// checkpoint's particles [first, last) (clamped to its count), unverified: the
+// split of a restart reads them before read_checkpoint verifies the file.
+// CheckpointError when the file cannot be read.
+void for_each_checkpoint_position_block(const std::string& path, std::size_t first, std::size_t last,
+                                        const std::function<void(std::size_t, const std::vector<Vec3d>&)>& use);
+
+// The particle count a checkpoint holds (CheckpointError when it cannot be read).
+std::size_t checkpoint_particle_count(const std::string& path);
 
 }  // namespace gs

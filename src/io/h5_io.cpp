@@ -136,6 +136,27 @@ void read_raw(const File& f, const std::string& path, hid_t memory_type, hid_t f
     GS_H5_CHECK(H5Dread(set.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), at);
 }
 
+void read_rows_raw(const File& f, const std::string& path, hid_t memory_type, hid_t file_type, void* data,
+                   const std::vector<hsize_t>& dims, hsize_t first, hsize_t rows) {
+  const std::string at = where(f, path);
+  require_shape(f, path, dims);
+  if (dims.empty() || first + rows > dims[0])
+    throw FormatError("dataset " + at + ": rows " + std::to_string(first) + " + " + std::to_string(rows) +
+                      " lie outside its shape " + shape_text(dims));
+  Handle set = open_dataset(f, path);
+  Handle type(GS_H5_CHECK(H5Dget_type(set.get()), at), H5Tclose);
+  if (GS_H5_CHECK(H5Tequal(type.get(), file_type), at) <= 0)
+    throw FormatError("dataset " + at + " has an unexpected element type");
+  std::vector<hsize_t> start(dims.size(), 0), count = dims;
+  start[0] = first;
+  count[0] = rows;
+  if (element_count(count) == 0) return;
+  Handle file_space(GS_H5_CHECK(H5Dget_space(set.get()), at), H5Sclose);
+  GS_H5_CHECK(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr), at);
+  Handle memory_space(GS_H5_CHECK(H5Screate_simple(int(count.size()), count.data(), nullptr), at), H5Sclose);
+  GS_H5_CHECK(H5Dread(set.get(), memory_type, memory_space.get(), file_space.get(), H5P_DEFAULT, data), at);
+}
+
 std::vector<Vec3d> read_vec3(const File& f, const std::string& path, hsize_t n) {
   require_shape(f, path, {n, 3});
   std::vector<Vec3d> v(n);

@@ -109,6 +109,12 @@ std::vector<hsize_t> dims_of(const File& f, const std::string& path);
 // `dims` and the file type of T (no silent conversion); FormatError if not.
 void read_raw(const File& f, const std::string& path, hid_t memory_type, hid_t file_type, void* data,
               const std::vector<hsize_t>& dims);
+// Rows [first, first + rows) along the first dimension of dataset `path`,
+// which must have shape `dims` and the file type given; the rows lie in
+// `data` one after the other. Large datasets are read this way a block at a
+// time, so the reader never holds them whole.
+void read_rows_raw(const File& f, const std::string& path, hid_t memory_type, hid_t file_type, void* data,
+                   const std::vector<hsize_t>& dims, hsize_t first, hsize_t rows);
 // FormatError unless dataset `path` has exactly shape `dims`: the readers
 // check it before they allocate, so a count that a file gets wrong (or a
 // damaged one) is reported instead of allocating for it.

@@ -34,25 +34,31 @@ void write_walls(const h5::File& f, const std::string& group, const std::vector<
   const hsize_t n = walls.size();
   h5::create_group(f, group);
   h5::write_attribute(f, group, "count", std::int64_t(n));
-  h5::write_string_attribute(f, group, "kinds", "0 plane, 1 disk, 2 cylinder");
+  h5::write_string_attribute(f, group, "kinds", "0 plane, 1 disk, 2 cylinder, 3 plate, 4 cone");
   if (!names.empty()) {
     if (names.size() != walls.size()) throw std::invalid_argument("write_walls: one name per wall expected");
     h5::write_string_attribute(f, group, "names", joined_lines(names));
   }
-  std::vector<std::int32_t> kind, material;
-  std::vector<double> rotation;
+  std::vector<std::int32_t> kind, material, active;
+  std::vector<double> rotation, hole_half;
   for (const Wall& w : walls) {
+    hole_half.insert(hole_half.end(), w.hole_half, w.hole_half + 2);
     kind.push_back(std::int32_t(w.kind));
     material.push_back(w.material);
+    active.push_back(std::int32_t(w.active));
     rotation.insert(rotation.end(), w.rotation, w.rotation + 9);
   }
   const std::string g = group + "/";
   h5::write_vector(f, g + "kind", kind);
   h5::write_vector(f, g + "material", material);
+  h5::write_vector(f, g + "active", active);
   h5::write_vec3(f, g + "point", column3(walls, [](const Wall& w) { return w.point; }));
   h5::write_vec3(f, g + "normal", column3(walls, [](const Wall& w) { return w.normal; }));
   h5::write_vector(f, g + "radius", column(walls, [](const Wall& w) { return w.radius; }));
   h5::write_vector(f, g + "length", column(walls, [](const Wall& w) { return w.length; }));
+  h5::write_array(f, g + "hole_half", hole_half.data(), {n, 2});
+  h5::write_vec3(f, g + "tangent", column3(walls, [](const Wall& w) { return w.tangent; }));
+  h5::write_vector(f, g + "end_radius", column(walls, [](const Wall& w) { return w.end_radius; }));
   h5::write_vec3(f, g + "velocity", column3(walls, [](const Wall& w) { return w.velocity; }));
   h5::write_vec3(f, g + "angular_velocity", column3(walls, [](const Wall& w) { return w.angular_velocity; }));
   h5::write_vec3(f, g + "axis_point", column3(walls, [](const Wall& w) { return w.axis_point; }));
@@ -75,9 +81,14 @@ std::vector<Wall> read_walls(const h5::File& f, const std::string& group) {
   const auto angular_velocity = h5::read_vec3(f, g + "angular_velocity", n);
   const auto axis_point = h5::read_vec3(f, g + "axis_point", n), shift = h5::read_vec3(f, g + "shift", n);
   const auto rotation = h5::read_array<double>(f, g + "rotation", {n, 3, 3});
+  // Thin walls' parameters, in files written since plates and cones exist.
+  const bool sheets = h5::exists(f, g + "end_radius");
+  const auto hole_half = sheets ? h5::read_array<double>(f, g + "hole_half", {n, 2}) : std::vector<double>(2 * n);
+  const auto tangent = sheets ? h5::read_vec3(f, g + "tangent", n) : std::vector<Vec3d>(n);
+  const auto end_radius = sheets ? h5::read_array<double>(f, g + "end_radius", {n}) : std::vector<double>(n);
   std::vector<Wall> walls(n);
   for (hsize_t i = 0; i < n; ++i) {
-    if (kind[i] < int(WallKind::plane) || kind[i] > int(WallKind::cylinder))
+    if (kind[i] < int(WallKind::plane) || kind[i] > int(WallKind::cone))
       throw h5::FormatError("wall " + std::to_string(i) + " in " + f.path() + " has unknown kind " +
                             std::to_string(kind[i]));
     Wall& w = walls[i];
@@ -92,6 +103,10 @@ std::vector<Wall> read_walls(const h5::File& f, const std::string& group) {
     w.axis_point = axis_point[i];
     for (int k = 0; k < 9; ++k) w.rotation[k] = rotation[9 * i + k];
     w.shift = shift[i];
+    w.hole_half[0] = hole_half[2 * i];
+    w.hole_half[1] = hole_half[2 * i + 1];
+    w.tangent = tangent[i];
+    w.end_radius = end_radius[i];
   }
   return walls;
 }

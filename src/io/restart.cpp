@@ -3,7 +3,8 @@
 namespace gs {
 
 Checkpoint make_checkpoint(const ParticleSnapshot& all, const HostHistory& history, const std::vector<Wall>& walls,
-                           std::uint64_t scene_hash, int rank_count) {
+                           std::uint64_t scene_hash, int rank_count,
+                           const std::optional<InsertionState>& insertion) {
   Checkpoint c;
   c.step = all.step;
   c.time = all.time;
@@ -13,6 +14,7 @@ Checkpoint make_checkpoint(const ParticleSnapshot& all, const HostHistory& histo
   c.scene_hash = scene_hash;
   c.rank_count = rank_count;
   c.decomposition_axis = -1;  // the partition is recomputed on restart, for any rank count
+  c.insertion = insertion;
   return c;
 }
 
@@ -25,6 +27,7 @@ RestartState restart_state(const Checkpoint& c) {
   r.particles.history = c.history;
   r.force = p.force;
   r.torque = p.torque;
+  r.insertion = c.insertion;
   return r;
 }
 

@@ -7,7 +7,8 @@ namespace gs {
 
 // The checkpoint of a whole run: `all` and `history` hold every particle, in id order.
 Checkpoint make_checkpoint(const ParticleSnapshot& all, const HostHistory& history, const std::vector<Wall>& walls,
-                           std::uint64_t scene_hash, int rank_count);
+                           std::uint64_t scene_hash, int rank_count,
+                           const std::optional<InsertionState>& insertion = std::nullopt);
 RestartState restart_state(const Checkpoint& c);
 
 }  // namespace gs

@@ -88,22 +88,64 @@ WallSurface disk_surface(const Vec3d& centre, const Vec3d& n, double radius) {
   return s;
 }
 
-// Vertices k (base circle) and S + k (top circle), two triangles per segment.
-WallSurface cylinder_surface(const Vec3d& base, const Vec3d& axis, double radius, double length) {
-  WallSurface s;
-  Vec3d u, v;
-  basis_across(axis, u, v);
-  const std::int32_t n = kWallSurfaceSegments;
-  for (double along : {0.0, length})
-    for (int k = 0; k < n; ++k) {
-      const double phi = 2 * kPi * k / n;
-      s.vertices.push_back(base + along * axis + radius * (std::cos(phi) * u + std::sin(phi) * v));
-    }
+// Two triangles per segment between vertex rings k and n + k, closed around.
+void band(WallSurface& s, std::int32_t n) {
   for (std::int32_t k = 0; k < n; ++k) {
     const std::int32_t next = (k + 1) % n;
     s.triangles.push_back({k, next, n + k});
     s.triangles.push_back({next, n + next, n + k});
   }
+}
+
+// Vertices k (base circle, radius r0) and S + k (far circle, radius r1).
+WallSurface cone_surface(const Vec3d& base, const Vec3d& axis, double r0, double r1, double length) {
+  WallSurface s;
+  Vec3d u, v;
+  basis_across(axis, u, v);
+  const std::int32_t n = kWallSurfaceSegments;
+  for (int end = 0; end < 2; ++end)
+    for (int k = 0; k < n; ++k) {
+      const double phi = 2 * kPi * k / n;
+      const double along = end ? length : 0.0, radius = end ? r1 : r0;
+      s.vertices.push_back(base + along * axis + radius * (std::cos(phi) * u + std::sin(phi) * v));
+    }
+  band(s, n);
+  return s;
+}
+
+WallSurface cylinder_surface(const Vec3d& base, const Vec3d& axis, double radius, double length) {
+  return cone_surface(base, axis, radius, radius, length);
+}
+
+// A plate as a ring: vertex k on the hole's rim (the centre without a hole)
+// and S + k on the outer circle, in the same direction from the centre. The
+// directions are 64 even ones plus, for a rectangular hole, its corners. An
+// unbounded plate is drawn to half the box's diagonal.
+WallSurface plate_surface(const Wall& w, const Vec3d& centre, const Vec3d& n, const DomainBox& box) {
+  Vec3d u, v;
+  basis_across(n, u, v);
+  const bool rectangle = w.hole_half[1] > 0;
+  const double a = w.hole_half[0], b = w.hole_half[1];
+  if (rectangle) {
+    u = unit(wall_rotate(w, w.tangent));
+    v = cross(n, u);
+  }
+  std::vector<double> phi;
+  for (int k = 0; k < kWallSurfaceSegments; ++k) phi.push_back(2 * kPi * k / kWallSurfaceSegments - kPi);
+  if (rectangle)
+    for (double sx : {-1.0, 1.0})
+      for (double sy : {-1.0, 1.0}) phi.push_back(std::atan2(sy * b, sx * a));
+  std::sort(phi.begin(), phi.end());
+  const double outer = std::isfinite(w.radius) ? w.radius : 0.5 * norm(box.max - box.min);
+  WallSurface s;
+  for (int ring = 0; ring < 2; ++ring)
+    for (double p : phi) {
+      const double c = std::cos(p), d = std::sin(p);
+      double r = outer;
+      if (ring == 0) r = rectangle ? std::min(a / std::max(std::abs(c), 1e-300), b / std::max(std::abs(d), 1e-300)) : a;
+      s.vertices.push_back(centre + r * (c * u + d * v));
+    }
+  band(s, std::int32_t(phi.size()));
   return s;
 }
 
@@ -115,6 +157,8 @@ WallSurface wall_surface(const Wall& w, const DomainBox& box) {
     case WallKind::plane: return plane_surface(point, normal, box);
     case WallKind::disk: return disk_surface(point, normal, w.radius);
     case WallKind::cylinder: return cylinder_surface(point, normal, w.radius, w.length);
+    case WallKind::plate: return plate_surface(w, point, normal, box);
+    case WallKind::cone: return cone_surface(point, normal, w.radius, w.end_radius, w.length);
   }
   return {};
 }
@@ -127,6 +171,7 @@ void write_wall_surfaces(const h5::File& f, const std::string& group, const std:
     const std::string g = group + "/" + std::to_string(k);
     h5::create_group(f, g);
     h5::write_string_attribute(f, g, "name", k < names.size() ? names[k] : "wall_" + std::to_string(k));
+    h5::write_attribute(f, g, "active", std::int32_t(walls[k].active));
     h5::write_vec3(f, g + "/vertices", s.vertices);
     h5::write_array(f, g + "/triangles", s.triangles.empty() ? nullptr : s.triangles[0].data(),
                     {hsize_t(s.triangles.size()), 3});

@@ -1,7 +1,8 @@
 #pragma once
 // The analytic walls as triangles at their current pose, so a viewer shows
 // them beside the particles (docs/OUTPUT.md): a plane is the polygon it cuts
-// out of the domain box, a disk a fan, a cylinder a band of quads.
+// out of the domain box, a disk a fan, a cylinder and a cone a band of quads,
+// a plate a ring from its hole's rim to its outer circle.
 #include <array>
 #include <cstdint>
 #include <string>
@@ -32,7 +33,9 @@ WallSurface wall_surface(const Wall& w, const DomainBox& box);
 
 // Group `group` (created here) with one subgroup per wall, named by its index:
 // `vertices` (V, 3) float64 and `triangles` (T, 3) int32, and a string
-// attribute `name` (names[k], or "wall_<k>" when the walls are unnamed).
+// attribute `name` (names[k], or "wall_<k>" when the walls are unnamed), an
+// int32 attribute `active` (0 while the wall is outside its active window; it
+// is drawn all the same).
 void write_wall_surfaces(const h5::File& f, const std::string& group, const std::vector<Wall>& walls,
                          const std::vector<std::string>& names, const DomainBox& box);
 

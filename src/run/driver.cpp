@@ -11,7 +11,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "run/insertion_log.hpp"
 #include "run/output_directory.hpp"
+#include "run/run_measurements.hpp"
 #include "run/run_output.hpp"
 #include "engine/schedule.hpp"
 #include "backend/memory.hpp"
@@ -101,27 +103,44 @@ long long steps_per(double interval, double dt) {
 
 
 // Progress to stderr at most every two seconds: step, time, rate, ETA. Only
-// rank 0 prints it (every rank would repeat the same line).
+// rank 0 prints it (every rank would repeat the same line). The rate counts
+// the particles of each stretch of steps, as they change when particles are
+// removed.
 class Progress {
  public:
   Progress(long long first, long long total, long long particles, bool prints)
-      : first_(first), total_(total), particles_(particles), prints_(prints) {}
-  void update(const Simulation& sim) {
+      : first_(first), last_step_(first), total_(total), particles_(particles), prints_(prints) {}
+  // After the steps up to sim's, which ran with the count of the previous
+  // call; `particles` is the count now.
+  void update(const Simulation& sim, long long particles) {
+    particle_steps_ += double(sim.step_count() - last_step_) * double(particles_);
+    last_step_ = sim.step_count();
+    const bool changed = particles != particles_;
+    particles_ = particles;
     if (!prints_) return;
     const auto now = Clock::now();
     if (std::chrono::duration<double>(now - last_).count() < 2.0 && sim.step_count() < total_) return;
     last_ = now;
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     const double done = double(sim.step_count() - first_);
-    const double rate = elapsed > 0 ? done * double(particles_) / elapsed : 0;
     const double eta = done > 0 ? elapsed * double(total_ - sim.step_count()) / done : 0;
-    std::fprintf(stderr, "step %lld/%lld  t = %.6g s  %.3g particle-steps/s  ETA %.0f s\n", sim.step_count(), total_,
-                 sim.time(), rate, eta);
+    std::fprintf(stderr, "step %lld/%lld  t = %.6g s  %.3g particle-steps/s  ETA %.0f s", sim.step_count(), total_,
+                 sim.time(), rate(), eta);
+    if (changed || varies_) std::fprintf(stderr, "  %lld particles", particles_);
+    varies_ = varies_ || changed;
+    std::fprintf(stderr, "\n");
+  }
+  // Particle-steps per second of wall time so far.
+  double rate() const {
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    return elapsed > 0 ? particle_steps_ / elapsed : 0;
   }
 
  private:
-  long long first_, total_, particles_;
+  long long first_, last_step_, total_, particles_;
   bool prints_;
+  bool varies_ = false;  // the count has changed: every line shows it
+  double particle_steps_ = 0;
   Clock::time_point start_ = Clock::now(), last_ = start_;
 };
 
@@ -146,6 +165,18 @@ std::unique_ptr<Simulation> start(const SceneSpec& scene, const RunRequest& a, T
   std::shared_ptr<DomainExchange> exchange = split ? with_link(split, a, transport, own_gpu) : nullptr;
   if (!restart) return std::make_unique<Simulation>(scene, options, exchange);
   return std::make_unique<Simulation>(scene, options, exchange, *restart);
+}
+
+// Rank k of K: the stored positions of particles [k N / K, (k+1) N / K).
+std::vector<Vec3d> checkpoint_position_share(const std::string& path, const Transport& transport) {
+  const std::size_t n = checkpoint_particle_count(path), k = std::size_t(transport.rank()),
+                    ranks = std::size_t(transport.size());
+  std::vector<Vec3d> share;
+  for_each_checkpoint_position_block(path, n * k / ranks, n * (k + 1) / ranks,
+                                     [&](std::size_t, const std::vector<Vec3d>& x) {
+                                       share.insert(share.end(), x.begin(), x.end());
+                                     });
+  return share;
 }
 
 // Ranks that read their checkpoint from different copies (node-local
@@ -201,7 +232,7 @@ class StopAgreement {
 };
 
 int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, Simulation& sim, RunOutput& out,
-            long long total, long long particles) {
+            RunMeasurements& measurements, long long total, long long particles) {
   RankExchange* exchange = sim.exchange();
   const long long every = scene.output.interval > 0 ? steps_per(scene.output.interval, scene.time_step) : total;
   const long long checkpoint_every = steps_per(scene.output.checkpoint_interval, scene.time_step);
@@ -219,33 +250,47 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
     out.log("step %lld: particles marked %d / %d by their side of the plane\n", step, int(scene.marking->front),
             int(scene.marking->back));
   };
+  const bool removes = scene.has_exits();
   const auto t0 = Clock::now();
   auto last_checkpoint = t0;
   const long long first_step = sim.step_count();  // after a restart, the rate counts this run's steps only
   Progress progress(first_step, total, particles, transport.rank() == 0);
   StopAgreement stop_signal(transport, a.stop_requested);
+  std::unique_ptr<InsertionLog> inserted;
+  if (!scene.inlets.empty()) inserted = std::make_unique<InsertionLog>(scene, out.directory(), transport);
   sim.check_fault();  // in the first forces
   if (a.restart.empty()) mark_if_due(0);
   if (a.restart.empty()) out.snapshot(sim);
   if (a.restart.empty() && mixing.due(0)) out.mixing(sim);
+  if (a.restart.empty()) {
+    measurements.prepare(sim, 0);
+    measurements.evaluate(sim);
+  }
   while (sim.step_count() < total) {
     const long long step = sim.step_count();
     long long chunk = std::min({every > 0 ? every - step % every : total, total - step, 200LL});
     if (checkpoint_every > 0) chunk = std::min(chunk, checkpoint_every - step % checkpoint_every);
     if (mixing.every > 0) chunk = std::min(chunk, mixing.next_after(step) - step);
     if (mark_step > step) chunk = std::min(chunk, mark_step - step);
+    if (const long long due = measurements.next_due_after(step); due > step) chunk = std::min(chunk, due - step);
+    measurements.prepare(sim, step + chunk);
     sim.run(chunk, [&] { return stop_signal.after_step(); });
+    if (removes) out.removals(sim);  // before any output, so that a checkpoint's removals are in removed.csv
+    if (inserted) inserted->write(sim.take_insertion_records(), [&](const std::string& line) { out.log("%s", line.c_str()); });
+    if (removes || inserted) particles = exchange ? exchange->total(sim.particle_count()) : sim.particle_count();
     mark_if_due(sim.step_count());
-    progress.update(sim);
+    progress.update(sim, particles);
     const long long now = sim.step_count();
     if ((every > 0 && now % every == 0) || now == total) out.snapshot(sim);
     if (mixing.due(now)) out.mixing(sim);
+    measurements.evaluate(sim);
     const bool wall_due = checkpoint_seconds > 0 &&
                           seconds_since(last_checkpoint) >= checkpoint_seconds;
     // Every rank must agree before a collective checkpoint or a stop.
     const bool stop = stop_signal.settle();
     const bool due = (checkpoint_every > 0 && now % checkpoint_every == 0) || transport.min(wall_due ? 0 : 1) == 0;
     if (due || stop || (checkpointing && now == total)) {
+      measurements.evaluate(sim, true);
       out.checkpoint(sim);
       last_checkpoint = Clock::now();
     }
@@ -256,9 +301,10 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
     }
   }
   const double wall = seconds_since(t0);
-  out.log("done: %lld steps, t = %.6g s, %.3g particle-steps/s\n", total, sim.time(),
-          wall > 0 ? double(sim.step_count() - first_step) * double(particles) / wall : 0.0);
+  out.log("done: %lld steps, t = %.6g s, %.3g particle-steps/s\n", total, sim.time(), progress.rate());
+  if (removes) out.log("particles at the end: %lld\n", particles);
   if (exchange) out.log("decomposition at the end: %s\n", exchange->describe().c_str());
+  out.log("%s", measurements.cost_summary(sim).c_str());
   const StepTimings t = sim.timings();
   out.log("time per phase (s, rank 0): integration %.3f, neighbour build %.3f, contact forces %.3f, exchange %.3f, "
           "output %.3f, total wall %.3f\n",
@@ -300,23 +346,31 @@ int run_scene(const RunRequest& request, Transport& transport) {
   bool own_gpu = false;
   std::optional<RestartState> restart;
   std::shared_ptr<DomainExchange> split;
+  // A restart on several ranks: each rank reads its share of the stored
+  // positions for the split, then only the particles it owns.
+  std::vector<Vec3d> share;
   on_every_rank(transport, [&] {
     own_gpu = a.backend == Backend::cuda && select_cuda_device(transport.local_rank());
-    if (!a.restart.empty()) {
-      CheckpointExpectations expect;
-      expect.scene_hash = hash;
-      restart = restart_state(read_checkpoint(a.restart, expect));
-    }
+    if (!a.restart.empty() && transport.size() > 1) share = checkpoint_position_share(a.restart, transport);
   });
-  if (restart) expect_same_step_everywhere(transport, a.restart, restart->step);
   const double load_seconds = seconds_since(setup_start);
-  // split_scene's one collective (summing the counts) comes before anything
+  // The split's one collective (summing the counts) comes before anything
   // in it can fail, so every rank reaches it.
   if (transport.size() > 1)
     on_every_rank(transport, [&] {
-      split = restart ? split_restart(scene, transport, restart->particles.position) : split_scene(scene, transport);
+      split = a.restart.empty() ? split_scene(scene, transport) : split_restart(scene, transport, share);
     });
+  share = {};
   const double split_seconds = seconds_since(setup_start) - load_seconds;
+  on_every_rank(transport, [&] {
+    if (a.restart.empty()) return;
+    CheckpointExpectations expect;
+    expect.scene_hash = hash;
+    std::function<bool(const Vec3d&)> keep;
+    if (split) keep = [&split](const Vec3d& x) { return split->owns(x); };
+    restart = restart_state(read_checkpoint(a.restart, expect, keep));
+  });
+  if (restart) expect_same_step_everywhere(transport, a.restart, restart->step);
   // Collective from here on: an error on one rank alone in the middle of an
   // exchange can only be reported by ending every rank (main.cpp).
   std::unique_ptr<Simulation> sim = start(scene, a, transport, split, restart, own_gpu);
@@ -325,9 +379,11 @@ int run_scene(const RunRequest& request, Transport& transport) {
   const double setup_seconds = seconds_since(setup_start);
   RankExchange* exchange = sim->exchange();
   std::unique_ptr<RunOutput> output;
+  std::unique_ptr<RunMeasurements> measurements;
   on_every_rank(transport, [&] {
     if (transport.rank() == 0) prepare_output_directory(directory, directory_use(a), scene, sim->step_count());
     output = std::make_unique<RunOutput>(scene, directory, transport, hash);
+    measurements = std::make_unique<RunMeasurements>(scene, directory, transport);
   });
   RunOutput& out = *output;
   const long long particles =
@@ -338,17 +394,25 @@ int run_scene(const RunRequest& request, Transport& transport) {
   const Simulation::SetupTimings& st = sim->setup_timings();
   out.log("set up in %.2f s (scene %.2f s, decomposition %.2f s, particles %.2f s, first forces %.2f s)\n",
           setup_seconds, load_seconds, split_seconds, st.particles, st.first_forces);
+  const HostThreads host = host_threads();
+  out.log("host threads (rank 0): %d on %d core%s\n", host.threads, host.cores, host.cores > 1 ? "s" : "");
+  if (host.threads > host.cores)
+    out.log("warning: %d host threads share %d core%s (rank 0's CPU affinity): set-up, output and the cpu backend "
+            "run slower; start ranks with cores of their own (mpirun --bind-to none, or --map-by ...:PE=n)\n",
+            host.threads, host.cores, host.cores > 1 ? "s" : "");
   if (!a.restart.empty()) {
     out.resume(sim->step_count());
+    measurements->resume(*sim);
     out.log("restarted from %s at step %lld\n", a.restart.c_str(), sim->step_count());
   }
   if (exchange) out.log("decomposition: %s\n", exchange->describe().c_str());
   try {
-    return advance(scene, a, transport, *sim, out, total, particles);
+    return advance(scene, a, transport, *sim, out, *measurements, total, particles);
   } catch (const SimulationFault& fault) {
     // Every rank has the same fault (agreed in check_fault): log it and keep
     // the state it was found in.
     out.log("run stopped by a fault: %s\n", fault.what());
+    out.removals(*sim);  // what left before it
     out.fault_snapshot(*sim);
     throw;
   } catch (const RankFailure& failure) {  // an output rank 0 could not write

@@ -16,6 +16,10 @@ namespace fs = std::filesystem;
 // Files a run writes with a step in their name; a `.tmp<pid>` suffix is a
 // temporary one left by a killed run.
 const std::regex kStepFile(R"((particles|meshes|checkpoint|fault)_([0-9]{10})\.(h5|csv)(\.tmp[0-9]*)?)");
+// The measurements' grids (docs/MEASUREMENTS.md), average_<name>_<step>.h5,
+// and their logs and indexes.
+const std::regex kGridFile(R"(average_[A-Za-z0-9_-]+_([0-9]{10})\.h5(\.tmp[0-9]*)?)");
+const std::regex kMeasurementFile(R"((flow|average)_[A-Za-z0-9_-]+\.(csv|xdmf)(\.tmp[0-9]*)?)");
 
 std::string mixing_log_name(const SceneSpec& scene) {
   if (!scene.mixing) return "";
@@ -24,8 +28,9 @@ std::string mixing_log_name(const SceneSpec& scene) {
 }
 
 bool is_run_file(const std::string& name) {
-  static const std::regex fixed(R"((run\.log|timeseries\.csv|particles\.xdmf|meshes\.xdmf)(\.tmp[0-9]*)?)");
-  return std::regex_match(name, kStepFile) || std::regex_match(name, fixed);
+  static const std::regex fixed(R"((run\.log|timeseries\.csv|removed\.csv|inlets\.csv|particles\.xdmf|meshes\.xdmf)(\.tmp[0-9]*)?)");
+  return std::regex_match(name, kStepFile) || std::regex_match(name, fixed) || std::regex_match(name, kGridFile) ||
+         std::regex_match(name, kMeasurementFile);
 }
 
 void remove_file(const fs::path& p) {
@@ -82,11 +87,12 @@ void prepare_output_directory(const std::string& directory, OutputDirectoryUse u
   for (const auto& entry : fs::directory_iterator(directory)) {
     const std::string name = entry.path().filename().string();
     if (!entry.is_regular_file() || !is_run_file(name)) continue;
-    std::smatch m;
+    std::smatch m, grid;
     const bool stepped = std::regex_match(name, m, kStepFile);
     // A restart keeps what came before its step, and every checkpoint; the
-    // continued run writes the snapshots after it again.
-    const bool later = stepped && m[1] != "checkpoint" && std::stoll(m[2]) > step;
+    // continued run writes the snapshots and grids after it again.
+    const bool later = (stepped && m[1] != "checkpoint" && std::stoll(m[2]) > step) ||
+                       (std::regex_match(name, grid, kGridFile) && std::stoll(grid[1]) > step);
     const bool temporary = stepped ? m[4].matched : name.find(".tmp") != std::string::npos;
     if (use == OutputDirectoryUse::overwrite || later || temporary) remove_file(entry.path());
   }
@@ -96,7 +102,12 @@ void prepare_output_directory(const std::string& directory, OutputDirectoryUse u
     return;
   }
   keep_rows_up_to(fs::path(directory) / "timeseries.csv", 0, step);
+  keep_rows_up_to(fs::path(directory) / "removed.csv", 1, step);
+  keep_rows_up_to(fs::path(directory) / "inlets.csv", 0, step);
   if (!mixing.empty()) keep_rows_up_to(fs::path(directory) / mixing, 1, step);
+  for (const FlowSpec& f : scene.measurements.flows) keep_rows_up_to(fs::path(directory) / ("flow_" + f.name + ".csv"), 1, step);
+  for (const AverageSpec& a : scene.measurements.averages)
+    keep_rows_up_to(fs::path(directory) / ("average_" + a.name + ".csv"), 1, step);
 }
 
 }  // namespace gs

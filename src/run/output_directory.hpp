@@ -20,10 +20,12 @@ void check_output_directory(const std::string& directory, OutputDirectoryUse use
 
 // Before the run writes: for `overwrite`, removes every file grainstorm
 // writes (snapshots, meshes, checkpoints, fault snapshots, XDMF indexes,
-// run.log, timeseries.csv, the mixing log and leftover temporaries of them);
-// for `restart` at `step`, removes the snapshots, meshes and fault snapshots
-// after `step` and the rows after it from timeseries.csv and the mixing log,
-// which the continued run writes again. Other files are left alone.
+// run.log, timeseries.csv, removed.csv, inlets.csv, the mixing log, the
+// measurements' logs, grids and indexes, and leftover temporaries of them);
+// for `restart` at `step`, removes the snapshots, meshes, fault snapshots and
+// measurement grids after `step` and the rows after it from timeseries.csv,
+// removed.csv, inlets.csv, the mixing log and the measurements' logs, which
+// the continued run writes again. Other files are left alone.
 void prepare_output_directory(const std::string& directory, OutputDirectoryUse use, const SceneSpec& scene,
                               long long step);
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdarg>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 
@@ -44,6 +45,13 @@ RunOutput::RunOutput(const SceneSpec& scene, const std::string& directory, Trans
     const std::filesystem::path log_path(scene.mixing->output);
     mixing_log_ = std::make_unique<MixingLog>(
         *scene.mixing, log_path.is_absolute() ? log_path.string() : directory_ + "/" + log_path.string());
+  }
+  if (scene.has_exits()) {
+    std::vector<std::string> materials;
+    for (const MaterialSpec& m : scene.materials) materials.push_back(m.name);
+    removal_log_ = std::make_unique<RemovalLog>(directory_ + "/removed.csv",
+                                                exits_of(scene.outlets, scene.open_faces).names, materials,
+                                                scene.time_step);
   }
   if (std::ftell(timeseries_) == 0) {
     std::fprintf(timeseries_, "step,time,particles,kinetic_energy_translational,kinetic_energy_rotational,"
@@ -153,6 +161,23 @@ void RunOutput::mixing(const Simulation& sim) {
   });
 }
 
+void RunOutput::removals(Simulation& sim) {
+  if (!scene_.has_exits()) return;
+  const std::vector<RemovedParticle> mine = sim.take_removed();
+  Bytes local(mine.size() * sizeof(RemovedParticle));
+  if (!mine.empty()) std::memcpy(local.data(), mine.data(), local.size());
+  const std::vector<Bytes> every_rank = transport_.gather(std::move(local));
+  written_by_rank_0([&] {
+    std::vector<RemovedParticle> all;
+    for (const Bytes& b : every_rank) {
+      const std::size_t at = all.size();
+      all.resize(at + b.size() / sizeof(RemovedParticle));
+      if (!b.empty()) std::memcpy(all.data() + at, b.data(), b.size());
+    }
+    removal_log_->append(std::move(all));
+  });
+}
+
 void RunOutput::resume(long long step) {
   written_by_rank_0([&] { index_earlier_snapshots(step); });
 }
@@ -192,7 +217,9 @@ void RunOutput::checkpoint(const Simulation& sim) {
   const HostHistory h = gather_history(transport_, local.id, sim.history());
   const std::string path = directory_ + "/" + checkpoint_h5_name(s.step);
   written_by_rank_0([&] {
-    write_checkpoint(path, make_checkpoint(s, h, sim.walls(), scene_hash_, transport_.size()));
+    const std::optional<InsertionState> insertion =
+        scene_.inlets.empty() ? std::nullopt : std::optional<InsertionState>(sim.insertion());
+    write_checkpoint(path, make_checkpoint(s, h, sim.walls(), scene_hash_, transport_.size(), insertion));
     checkpoints_.push_back(path);
     while (checkpoints_.size() > 2) {
       std::filesystem::remove(checkpoints_.front());

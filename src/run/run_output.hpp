@@ -15,6 +15,7 @@
 #include "io/h5_meshes.hpp"
 #include "io/snapshot_fields.hpp"
 #include "io/xdmf_series.hpp"
+#include "run/removal_log.hpp"
 
 namespace gs {
 
@@ -28,6 +29,9 @@ class RunOutput {
   void snapshot(const Simulation& sim);    // and a time-series row
   void checkpoint(const Simulation& sim);  // keeps the newest two
   void mixing(const Simulation& sim);      // one row of the mixing analysis (scene.mixing)
+  // The particles every rank removed at the scene's exits since the last
+  // call, as rows of removed.csv (nothing when the scene has no exits).
+  void removals(Simulation& sim);
   // After a fault: every particle field of the state the fault was found in,
   // as fault_<step>.h5 (an HDF5 snapshot whatever the output format).
   void fault_snapshot(const Simulation& sim);
@@ -36,6 +40,7 @@ class RunOutput {
   void resume(long long step);
   // printf to stdout and the log file, rank 0 only.
   void log(const char* format, ...) __attribute__((format(printf, 2, 3)));
+  const std::string& directory() const { return directory_; }
 
  private:
   template <class Write>
@@ -56,6 +61,7 @@ class RunOutput {
   std::FILE* log_ = nullptr;
   std::FILE* timeseries_ = nullptr;
   std::unique_ptr<MixingLog> mixing_log_;
+  std::unique_ptr<RemovalLog> removal_log_;
 };
 
 }  // namespace gs

@@ -13,51 +13,6 @@ namespace gs {
 
 namespace {
 
-// Bounding box of a region.
-void region_bounds(const FillRegion& reg, Vec3d& lo, Vec3d& hi) {
-  if (reg.kind == FillRegion::Kind::box) {
-    lo = reg.min;
-    hi = reg.max;
-    return;
-  }
-  // A disk of radius R with unit normal a reaches R sqrt(1 - a_i^2) along axis i.
-  const Vec3d& a = reg.axis;
-  const Vec3d ext(reg.radius * std::sqrt(std::max(0.0, 1 - a.x * a.x)),
-                  reg.radius * std::sqrt(std::max(0.0, 1 - a.y * a.y)),
-                  reg.radius * std::sqrt(std::max(0.0, 1 - a.z * a.z)));
-  const Vec3d top = reg.base + reg.length * a;
-  lo = Vec3d(std::min(reg.base.x, top.x), std::min(reg.base.y, top.y), std::min(reg.base.z, top.z)) - ext;
-  hi = Vec3d(std::max(reg.base.x, top.x), std::max(reg.base.y, top.y), std::max(reg.base.z, top.z)) + ext;
-}
-
-// The centres that keep a sphere of radius r inside the region: the region shrunk by r.
-FillRegion shrunk(const FillRegion& reg, double r) {
-  FillRegion s = reg;
-  const Vec3d d(r, r, r);
-  s.min = reg.min + d;
-  s.max = reg.max - d;
-  s.base = reg.base + r * reg.axis;
-  s.radius = reg.radius - r;
-  s.length = reg.length - 2 * r;
-  return s;
-}
-
-bool fits(const FillRegion& reg, double r) {
-  const FillRegion s = shrunk(reg, r);
-  if (reg.kind == FillRegion::Kind::cylinder) return s.radius >= 0 && s.length >= 0;
-  return s.min.x <= s.max.x && s.min.y <= s.max.y && s.min.z <= s.max.z;
-}
-
-// Is p a centre that keeps a sphere of radius r inside the region?
-bool admits(const FillRegion& reg, const Vec3d& p, double r) {
-  if (reg.kind == FillRegion::Kind::box)
-    return p.x >= reg.min.x + r && p.y >= reg.min.y + r && p.z >= reg.min.z + r && p.x <= reg.max.x - r &&
-           p.y <= reg.max.y - r && p.z <= reg.max.z - r;
-  const Vec3d d = p - reg.base;
-  const double along = dot(d, reg.axis), room = reg.radius - r;
-  return along >= r && along <= reg.length - r && norm2(d - along * reg.axis) <= room * room;
-}
-
 double sphere_volume(double r) { return 4.0 / 3.0 * M_PI * r * r * r; }
 
 // Random sequential addition cannot pass random close packing; a request above
@@ -133,12 +88,6 @@ void check_id_room(std::size_t existing, std::size_t count) {
     throw GenerateError("too many particles: ids would exceed the 32-bit id range");
 }
 
-double region_volume(const FillRegion& reg) {
-  if (reg.kind == FillRegion::Kind::cylinder) return M_PI * reg.radius * reg.radius * reg.length;
-  const Vec3d d = reg.max - reg.min;
-  return d.x * d.y * d.z;
-}
-
 namespace {
 
 // Sites along one axis in double: a huge extent gives a huge count here,
@@ -189,8 +138,7 @@ std::vector<double> random_fill_radii(const SizeSpec& size, std::size_t count, s
   } else if (size.kind == SizeSpec::Kind::uniform) {
     // A stream of its own, so the radii do not depend on how placement goes.
     std::mt19937_64 rng(seed ^ 0x9E3779B97F4A7C15ull);
-    for (std::size_t i = 0; i < count; ++i)
-      radii.push_back(size.radius_min + (size.radius_max - size.radius_min) * uniform01(rng));
+    for (std::size_t i = 0; i < count; ++i) radii.push_back(radius_at(size, uniform01(rng)));
   } else {
     // Largest remainder: floor every share, then hand the leftover particles
     // to the classes with the largest fractional parts.

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "scene/fill_region.hpp"
 #include "scene/scene.hpp"
 
 namespace gs {
@@ -29,30 +30,6 @@ ParticleInit make_particle(const ParticleTemplate& t, std::size_t id, const Vec3
 // GenerateError when `count` more particles after `existing` ones would
 // exceed the particle ids.
 void check_id_room(std::size_t existing, std::size_t count);
-
-// Region that must contain a random fill: an axis-aligned box or a cylinder.
-struct FillRegion {
-  enum class Kind { box, cylinder } kind = Kind::box;
-  Vec3d min, max;     // box
-  Vec3d base, axis;   // cylinder: centre of the base circle, unit axis
-  double radius = 0;  // cylinder radius [m]
-  double length = 0;  // cylinder length along the axis [m]
-};
-
-double region_volume(const FillRegion& region);
-
-// One diameter of a discrete size distribution and its share of the count.
-struct SizeClass {
-  double diameter = 0;
-  double fraction = 0;
-};
-
-// How the radii of a random fill are chosen.
-struct SizeSpec {
-  enum class Kind { fixed, uniform, classes } kind = Kind::fixed;
-  double radius_min = 0, radius_max = 0;  // fixed: both equal; uniform: range [m]
-  std::vector<SizeClass> classes;         // fractions sum to 1
-};
 
 struct RandomFillSpec {
   ParticleTemplate tmpl;

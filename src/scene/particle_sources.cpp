@@ -67,6 +67,11 @@ void for_each_radius(const SceneSpec& scene, const std::function<void(int, doubl
   for (const ParticleInit& p : scene.particles) visit(p.material, p.radius);
   for (const LatticeSource& l : scene.lattices)
     if (l.count > 0) visit(l.spec.tmpl.material, l.spec.radius);
+  // The particles an inlet will insert: its extreme radii bound them all.
+  for (const InletSpec& inlet : scene.inlets) {
+    visit(inlet.tmpl.material, smallest_radius(inlet.size));
+    visit(inlet.tmpl.material, largest_radius(inlet.size));
+  }
 }
 
 double largest_radius(const SceneSpec& scene) {
@@ -129,21 +134,41 @@ std::vector<ParticleInit> select_particles(const SceneSpec& scene, const std::fu
   return out;
 }
 
+void for_each_selected_block(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep,
+                             std::size_t block, const std::function<void(std::size_t)>& size,
+                             const std::function<void(std::size_t, const ParticleInit&)>& write,
+                             const std::function<void(std::size_t, std::size_t)>& done) {
+  const ParticleStream stream(scene);
+  const std::size_t n = stream.count(), chunks = (n + kChunk - 1) / kChunk;
+  // offset[c]: the rank of chunk c's first selected particle.
+  std::vector<std::size_t> offset(chunks + 1, 0);
+  if (keep)
+    in_chunks(stream, 0, n, [&](std::size_t c, const std::vector<ParticleInit>& chunk) {
+      for (const ParticleInit& p : chunk) offset[c + 1] += keep(p.position) ? 1 : 0;
+    });
+  else
+    for (std::size_t c = 0; c < chunks; ++c) offset[c + 1] = std::min(kChunk, n - c * kChunk);
+  for (std::size_t c = 1; c < offset.size(); ++c) offset[c] += offset[c - 1];
+  size(offset.back());
+  const std::size_t per_block = std::max<std::size_t>(1, block / kChunk);
+  for (std::size_t c0 = 0; c0 < chunks; c0 += per_block) {
+    const std::size_t c1 = std::min(chunks, c0 + per_block);
+    in_chunks(stream, c0 * kChunk, std::min(n, c1 * kChunk),
+              [&](std::size_t c, const std::vector<ParticleInit>& chunk) {
+                std::size_t k = offset[c0 + c] - offset[c0];
+                for (const ParticleInit& p : chunk)
+                  if (!keep || keep(p.position)) write(k++, p);
+              });
+    done(offset[c0], offset[c1] - offset[c0]);
+  }
+}
+
 void for_each_selected(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep,
                        const std::function<void(std::size_t)>& size,
                        const std::function<void(std::size_t, const ParticleInit&)>& write) {
-  const ParticleStream stream(scene);
-  std::vector<std::size_t> offset((stream.count() + kChunk - 1) / kChunk + 1, 0);
-  in_chunks(stream, 0, stream.count(), [&](std::size_t c, const std::vector<ParticleInit>& chunk) {
-    for (const ParticleInit& p : chunk) offset[c + 1] += keep(p.position) ? 1 : 0;
-  });
-  for (std::size_t c = 1; c < offset.size(); ++c) offset[c] += offset[c - 1];
-  size(offset.back());
-  in_chunks(stream, 0, stream.count(), [&](std::size_t c, const std::vector<ParticleInit>& chunk) {
-    std::size_t k = offset[c];
-    for (const ParticleInit& p : chunk)
-      if (keep(p.position)) write(k++, p);
-  });
+  // One block: a particle's index within it is its rank.
+  for_each_selected_block(scene, keep, std::numeric_limits<std::size_t>::max(), size, write,
+      [&](std::size_t, std::size_t) {});
 }
 
 void for_each_position_block(const SceneSpec& scene, std::size_t first, std::size_t last,

@@ -47,8 +47,9 @@ class ParticleStream {
 };
 
 std::size_t particle_count(const SceneSpec& scene);
-// Calls visit(material, radius) for every explicit particle and once per
-// lattice: every radius the scene has, without generating a lattice.
+// Calls visit(material, radius) for every explicit particle, once per
+// lattice, and for the smallest and largest radius of each inlet: every
+// radius the run can have, without generating a lattice.
 void for_each_radius(const SceneSpec& scene, const std::function<void(int material, double radius)>& visit);
 double largest_radius(const SceneSpec& scene);   // 0 without particles
 double smallest_radius(const SceneSpec& scene);  // infinity without particles
@@ -62,14 +63,24 @@ std::vector<ParticleInit> all_particles(const SceneSpec& scene);
 // chunks on every thread (keep must be safe to call from several threads).
 std::vector<ParticleInit> select_particles(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep);
 
-// The same without a list of them: the particles `keep` accepts are counted
-// chunk by chunk (one pass, every thread), `size(n)` is told how many there
-// are, then each is handed to `write(k, particle)` with its rank k in id
-// order (a second pass; several threads at once, each k once). Setup fills
-// its arrays this way, so no copy of the particles is ever held.
+// The same without a list of them: the particles `keep` accepts (all of them
+// when `keep` is empty, which needs no counting pass) are counted chunk by
+// chunk (one pass, every thread), `size(n)` is told how many there are, then
+// each is handed to `write(k, particle)` with its rank k in id order (a
+// second pass; several threads at once, each k once). Setup fills its arrays
+// this way, so no copy of the particles is ever held.
 void for_each_selected(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep,
-                       const std::function<void(std::size_t n)>& size,
-                       const std::function<void(std::size_t k, const ParticleInit& p)>& write);
+                       const std::function<void(std::size_t)>& size,
+                       const std::function<void(std::size_t, const ParticleInit&)>& write);
+
+// The same in blocks of about `block` selected particles, in id order: `write`
+// gets each particle's index within its block, and `done(first, count)` (on
+// the calling thread) follows each block with the rank of its first particle
+// and its length. Setup uploads each block while the host holds only one.
+void for_each_selected_block(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep,
+                             std::size_t block, const std::function<void(std::size_t)>& size,
+                             const std::function<void(std::size_t, const ParticleInit&)>& write,
+                             const std::function<void(std::size_t first, std::size_t count)>& done);
 
 // Positions of particles [first, last) of the sequence, in blocks generated
 // on every thread and handed to `use` one after the other, in order.

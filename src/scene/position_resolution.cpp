@@ -15,11 +15,11 @@ double fp32_spacing(double x) {
 }
 
 std::string fp32_state_problem(const SceneSpec& scene) {
-  if (!fp32_state(scene.precision) || particle_count(scene) == 0) return "";
+  const double r_min = smallest_radius(scene);  // inlets' particles included
+  if (!fp32_state(scene.precision) || !std::isfinite(r_min)) return "";
   double far = 0;
   for (const Vec3d& c : {scene.domain_min, scene.domain_max})
     far = std::max({far, std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
-  const double r_min = smallest_radius(scene);
   const double spacing = fp32_spacing(far);
   if (spacing <= kFp32SpacingOfRadius * r_min) return "";
   std::ostringstream m;

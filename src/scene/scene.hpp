@@ -5,7 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "scene/inlet_spec.hpp"
+#include "scene/measurement_spec.hpp"
 #include "scene/mixing_spec.hpp"
+#include "scene/outlets.hpp"
 #include "scene/particle_sets.hpp"
 #include "core/materials.hpp"
 #include "core/particle_fields.hpp"
@@ -13,6 +16,7 @@
 #include "core/types.hpp"
 #include "core/vec3.hpp"
 #include "walls/mesh.hpp"
+#include "walls/timeline.hpp"
 #include "walls/wall.hpp"
 
 namespace gs {
@@ -63,6 +67,7 @@ struct SceneSettings {
   std::vector<PairSpec> pairs;       // every unordered pair of materials that can touch
   std::vector<Wall> walls;
   std::vector<std::string> wall_names;
+  std::vector<Timeline> wall_timelines;  // one per wall, or none (walls/timeline.hpp)
   MeshSet meshes;                    // triangle-mesh walls (docs/MESHES.md); names in meshes.names
   double time_step = 0;              // resolved absolute time step [s]
   double contact_time = 0;           // shortest pair contact time [s]
@@ -74,6 +79,11 @@ struct SceneSettings {
   DecompositionSpec decomposition;
   std::optional<MixingSpec> mixing;  // analysis.mixing (docs/MIXING.md); none: no mixing analysis
   std::optional<MarkingSpec> marking;  // none: markers stay as created
+  std::vector<OutletSpec> outlets;   // regions where particles are removed (scene/outlets.hpp)
+  unsigned open_faces = 0;           // domain faces particles leave through, removed (scene/outlets.hpp)
+  bool has_exits() const { return !outlets.empty() || open_faces != 0; }  // particles can leave the run
+  std::vector<InletSpec> inlets;       // particles inserted during the run (engine/insertion.hpp)
+  MeasurementsSpec measurements;     // flows and averages during the run (docs/MEASUREMENTS.md)
   // "<file>:<line>: <key path>: <what>" for each value the scene sets that the
   // run ignores (a parameter of an effect that is off); check and run print them.
   std::vector<std::string> warnings;

@@ -23,7 +23,8 @@ namespace {
 const std::vector<std::string> kTopKeys = {"domain",    "gravity", "contact_model", "precision",     "effects",
                                            "materials", "pairs",   "particles",     "walls",         "time_step",
                                            "duration",  "output",  "contact_slots", "decomposition",
-                                           "analysis",  "marking"};
+                                           "analysis",  "marking", "outlets",       "inlets",
+                                           "measurements"};
 
 void parse_decomposition(const Map& m, SceneSpec& s) {
   DecompositionSpec& d = s.decomposition;
@@ -42,9 +43,11 @@ void parse_decomposition(const Map& m, SceneSpec& s) {
 }
 
 void parse_globals(const Map& top, SceneSpec& s) {
-  const Map domain(top.get("domain"), {"min", "max", "periodic"});
+  const Map domain(top.get("domain"), {"min", "max", "open", "periodic"});
   box_corners(domain, s.domain_min, s.domain_max);
   if (domain.has("periodic")) s.periodic_axes = parse_periodic_axes(domain.get("periodic"));
+  parse_open_faces(domain, s);
+  check_open_periodic_faces(domain, s);
   s.gravity = vec3_or(top, "gravity", Vec3d());
   if (top.has("contact_model"))
     s.model = contact_model_named(choice(top.get("contact_model"), contact_model_names()));
@@ -246,13 +249,17 @@ SceneSpec parse_scene(const std::string& yaml_text, const std::string& source) {
   parse_materials(top, s);
   parse_walls(top, s);
   parse_particles(top, s);
+  parse_inlets(top, s);
   parse_pairs(top, s);
   check_periodic_box(top, s);
   check_search_grid(top, s);
   resolve_time_step(top, s);
+  check_inlet_rates(top, s);
   if (const std::string problem = fp32_state_problem(s); !problem.empty()) fail(top.get("precision"), problem);
   parse_analysis(top, s);
   parse_marking(top, s);
+  parse_outlets(top, s);
+  parse_measurements(top, s);
   return s;
 }
 

@@ -11,14 +11,6 @@
 
 namespace gs::scene_yaml {
 
-namespace {
-
-// Particles from `begin` up to the next origin were defined at `where`.
-struct Origin {
-  std::size_t begin;
-  Val where;
-};
-
 ParticleTemplate parse_template(const SceneSpec& s, const Map& m) {
   ParticleTemplate t;
   t.material = material_index(s, m.get("material"));
@@ -27,6 +19,72 @@ ParticleTemplate parse_template(const SceneSpec& s, const Map& m) {
   if (m.has("marker")) t.marker = std::uint8_t(integer(m.get("marker"), 0, 255));
   return t;
 }
+
+FillRegion parse_region(const Val& v) {
+  const Map m(v, {"box", "cylinder"});
+  FillRegion r;
+  if (m.one_of({"box", "cylinder"}) == "box") {
+    r.kind = FillRegion::Kind::box;
+    box_corners(Map(m.get("box"), {"min", "max"}), r.min, r.max);
+    return r;
+  }
+  const Map c(m.get("cylinder"), {"base", "axis", "radius", "length"});
+  r.kind = FillRegion::Kind::cylinder;
+  r.base = vec3(c.get("base"));
+  r.axis = unit_vector(c.get("axis"));
+  r.radius = positive(c.get("radius"));
+  r.length = positive(c.get("length"));
+  return r;
+}
+
+static std::vector<SizeClass> parse_distribution(const Val& v) {
+  std::vector<SizeClass> classes;
+  double total = 0;
+  for_each_item(v, [&](const Val& item, std::size_t) {
+    const Map m(item, {"diameter", "fraction"});
+    classes.push_back({positive(m.get("diameter")), positive(m.get("fraction"))});
+    total += classes.back().fraction;
+  });
+  if (classes.empty()) fail(v, "the distribution needs at least one diameter");
+  // Fractions written as rounded decimals (0.33, 0.33, 0.34) are fine; a sum
+  // that is plainly off is a slip worth reporting.
+  if (std::abs(total - 1) > 1e-3) fail(v, "the fractions must add up to 1, they add up to " + str(total));
+  for (auto& c : classes) c.fraction /= total;
+  return classes;
+}
+
+SizeSpec parse_sizes(const Map& m) {
+  SizeSpec size;
+  if (m.one_of({"radius", "diameter_distribution"}) == "diameter_distribution") {
+    size.kind = SizeSpec::Kind::classes;
+    size.classes = parse_distribution(m.get("diameter_distribution"));
+    if (m.has("fractions_by") && choice(m.get("fractions_by"), {"count", "mass"}) == "mass")
+      size.classes = count_fractions_from_mass(size.classes);
+    return size;
+  }
+  if (m.has("fractions_by")) fail(m.get("fractions_by"), "applies to a diameter_distribution only");
+  const Val r = m.get("radius");
+  if (!r.node.IsMap()) {
+    size.kind = SizeSpec::Kind::fixed;
+    size.radius_min = size.radius_max = positive(r);
+    return size;
+  }
+  const Map range(r, {"min", "max"});
+  size.kind = SizeSpec::Kind::uniform;
+  size.radius_min = positive(range.get("min"));
+  size.radius_max = positive(range.get("max"));
+  if (size.radius_max < size.radius_min)
+    fail(r, "max " + str(size.radius_max) + " is below min " + str(size.radius_min));
+  return size;
+}
+
+namespace {
+
+// Particles from `begin` up to the next origin were defined at `where`.
+struct Origin {
+  std::size_t begin;
+  Val where;
+};
 
 // Runs a generator; its complaints become errors at the set's line.
 template <class F>
@@ -59,64 +117,9 @@ void add_lattice(SceneSpec& s, const Val& v) {
   s.lattices.push_back({spec, ParticleId(first), sites});
 }
 
-FillRegion parse_region(const Val& v) {
-  const Map m(v, {"box", "cylinder"});
-  FillRegion r;
-  if (m.one_of({"box", "cylinder"}) == "box") {
-    r.kind = FillRegion::Kind::box;
-    box_corners(Map(m.get("box"), {"min", "max"}), r.min, r.max);
-    return r;
-  }
-  const Map c(m.get("cylinder"), {"base", "axis", "radius", "length"});
-  r.kind = FillRegion::Kind::cylinder;
-  r.base = vec3(c.get("base"));
-  r.axis = unit_vector(c.get("axis"));
-  r.radius = positive(c.get("radius"));
-  r.length = positive(c.get("length"));
-  return r;
-}
-
-std::vector<SizeClass> parse_distribution(const Val& v) {
-  std::vector<SizeClass> classes;
-  double total = 0;
-  for_each_item(v, [&](const Val& item, std::size_t) {
-    const Map m(item, {"diameter", "fraction"});
-    classes.push_back({positive(m.get("diameter")), positive(m.get("fraction"))});
-    total += classes.back().fraction;
-  });
-  if (classes.empty()) fail(v, "the distribution needs at least one diameter");
-  // Fractions written as rounded decimals (0.33, 0.33, 0.34) are fine; a sum
-  // that is plainly off is a slip worth reporting.
-  if (std::abs(total - 1) > 1e-3) fail(v, "the fractions must add up to 1, they add up to " + str(total));
-  for (auto& c : classes) c.fraction /= total;
-  return classes;
-}
-
-SizeSpec parse_sizes(const Map& m) {
-  SizeSpec size;
-  if (m.one_of({"radius", "diameter_distribution"}) == "diameter_distribution") {
-    size.kind = SizeSpec::Kind::classes;
-    size.classes = parse_distribution(m.get("diameter_distribution"));
-    return size;
-  }
-  const Val r = m.get("radius");
-  if (!r.node.IsMap()) {
-    size.kind = SizeSpec::Kind::fixed;
-    size.radius_min = size.radius_max = positive(r);
-    return size;
-  }
-  const Map range(r, {"min", "max"});
-  size.kind = SizeSpec::Kind::uniform;
-  size.radius_min = positive(range.get("min"));
-  size.radius_max = positive(range.get("max"));
-  if (size.radius_max < size.radius_min)
-    fail(r, "max " + str(size.radius_max) + " is below min " + str(size.radius_min));
-  return size;
-}
-
 void add_random_fill(SceneSpec& s, const Val& v) {
-  const Map m(v, {"material", "region", "count", "radius", "diameter_distribution", "seed", "velocity",
-                  "angular_velocity", "marker"});
+  const Map m(v, {"material", "region", "count", "radius", "diameter_distribution", "fractions_by", "seed",
+                  "velocity", "angular_velocity", "marker"});
   RandomFillSpec spec;
   spec.tmpl = parse_template(s, m);
   spec.region = parse_region(m.get("region"));
@@ -165,6 +168,7 @@ std::string misfit(const SceneSpec& s, const ParticleInit& p) {
   if (c.x - r < lo.x || c.y - r < lo.y || c.z - r < lo.z || c.x + r > hi.x || c.y + r > hi.y || c.z + r > hi.z)
     return describe(p) + " is not inside the domain " + str(lo) + " .. " + str(hi);
   for (std::size_t w = 0; w < s.walls.size(); ++w) {
+    if (!timeline_of(s.wall_timelines, w).active.contains(0)) continue;  // not there at t = 0
     const double depth = wall_penetration(s.walls[w], c, p.radius);
     if (depth > slack)
       return describe(p) + " cuts " + str(depth) + " m into wall " + quoted(s.wall_names[w]) + " at t = 0";
@@ -209,7 +213,8 @@ void check_packing(const SceneSpec& s, const std::vector<Origin>& origins, bool 
 }  // namespace
 
 void parse_particles(const Map& top, SceneSpec& s) {
-  const Val list = top.get("particles");
+  const Val list = top.has("inlets") ? top.opt("particles") : top.get("particles");
+  if (!list.present()) return;
   std::vector<Origin> origins;
   std::size_t sets = 0;
   bool any_list = false;
@@ -224,7 +229,10 @@ void parse_particles(const Map& top, SceneSpec& s) {
     if (kind == "random_fill") add_random_fill(s, set);
     if (kind == "list") add_list(s, set, origins);
   });
-  if (particle_count(s) == 0) fail(list, "the scene has no particles");
+  if (particle_count(s) == 0) {
+    if (top.has("inlets")) return;  // a scene with inlets may start empty (a silo being filled)
+    fail(list, "the scene has no particles");
+  }
   check_packing(s, origins, sets == 1 && !any_list);
 }
 

@@ -5,7 +5,10 @@
 #include <stdexcept>
 
 #include "scene/scene_loader.hpp"
+#include "scene/scene_motion.hpp"
 #include "scene/scene_sections.hpp"
+#include "scene/scene_sheets.hpp"
+#include "walls/sheet_geometry.hpp"
 #include "walls/stl.hpp"
 
 namespace gs {
@@ -24,6 +27,9 @@ double wall_penetration(const Wall& w, const Vec3d& c, double r) {
     case WallKind::cylinder:
       if (h < 0 || h > w.length) return -r;
       return norm(d - h * w.normal) + r - w.radius;
+    case WallKind::plate:
+    case WallKind::cone:  // thin sheets: the distance to the nearest point, from either side
+      return r - norm(d - sheet_nearest(w, c));
   }
   return -r;
 }
@@ -32,19 +38,8 @@ namespace scene_yaml {
 
 namespace {
 
-const std::vector<std::string> kWallKeys = {"plane", "box", "cylinder", "mesh", "name", "material", "motion"};
-
-// Prescribed motion, shared by every wall that one entry expands to.
-void parse_motion(const Val& v, Wall& w) {
-  const Map m(v, {"velocity", "rotation", "start"});
-  w.velocity = vec3_or(m, "velocity", Vec3d());
-  w.motion_start = number_or(m, "start", 0.0, nonnegative);
-  if (!m.has("rotation")) return;
-  const Map r(m.get("rotation"), {"axis_point", "axis", "rpm"});
-  w.axis_point = vec3(r.get("axis_point"));
-  const Vec3d axis = unit_vector(r.get("axis"));
-  w.angular_velocity = axis * (number(r.get("rpm")) * 2.0 * M_PI / 60.0);
-}
+const std::vector<std::string> kWallKeys = {"plane", "box",  "cylinder", "plate",  "cone",
+                                            "mesh",  "name", "material", "motion", "active"};
 
 void check_new_name(const SceneSpec& s, const std::string& name, const Val& where) {
   for (const auto& other : s.wall_names)
@@ -115,7 +110,7 @@ void add_cylinder(SceneSpec& s, const Wall& proto, const Val& v, const std::stri
 
 // A triangle mesh from an STL file (relative to the scene file), with the
 // entry's material and motion (docs/MESHES.md).
-void add_mesh_wall(SceneSpec& s, const Wall& proto, const Val& v, const std::string& name) {
+void add_mesh_wall(SceneSpec& s, const Wall& proto, const Timeline& timeline, const Val& v, const std::string& name) {
   const Map m(v, {"stl", "scale", "weld_tolerance", "crease_angle"});
   check_new_name(s, name, v);
   const Val file = m.get("stl");
@@ -133,7 +128,7 @@ void add_mesh_wall(SceneSpec& s, const Wall& proto, const Val& v, const std::str
     fail(file, cut(e.what(), 4 * kEchoLength));
   }
   mesh.name = name;
-  const MeshMotion motion{proto.velocity, proto.angular_velocity, proto.axis_point, proto.motion_start};
+  const MeshMotion motion{proto.velocity, proto.angular_velocity, proto.axis_point, proto.motion_start, timeline};
   try {
     add_mesh(s.meshes, mesh, proto.material, motion, crease);
   } catch (const std::exception& e) {
@@ -190,10 +185,12 @@ void parse_walls(const Map& top, SceneSpec& s) {
   std::map<std::string, int> unnamed;  // per kind, for default names box, box2, ...
   for_each_item(list, [&](const Val& item, std::size_t) {
     const Map m(item, kWallKeys);
-    const std::string kind = m.one_of({"plane", "box", "cylinder", "mesh"});
+    const std::string kind = m.one_of({"plane", "box", "cylinder", "plate", "cone", "mesh"});
     Wall proto;
+    Timeline timeline;  // shared, as the motion, by every wall of the entry
     proto.material = material_index(s, m.get("material"));
-    if (m.has("motion")) parse_motion(m.get("motion"), proto);
+    if (m.has("motion")) parse_motion(m.get("motion"), proto, timeline);
+    if (m.has("active")) timeline.active = parse_active(m.get("active"));
     std::string name = kind;
     if (m.has("name")) {
       name = text(m.get("name"));
@@ -205,7 +202,10 @@ void parse_walls(const Map& top, SceneSpec& s) {
     if (kind == "plane") add_plane(s, proto, shape, name);
     if (kind == "box") add_box(s, proto, shape, name);
     if (kind == "cylinder") add_cylinder(s, proto, shape, name);
-    if (kind == "mesh") add_mesh_wall(s, proto, shape, name);
+    if (kind == "plate") add_wall(s, parse_plate(shape, proto), name, shape);
+    if (kind == "cone") add_wall(s, parse_cone(shape, proto), name, shape);
+    if (kind == "mesh") add_mesh_wall(s, proto, timeline, shape, name);
+    s.wall_timelines.resize(s.walls.size(), timeline);
     check_periodic_walls(s, first_wall, item);
   });
   if (s.walls.size() > std::size_t(kMaxWalls))

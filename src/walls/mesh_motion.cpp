@@ -26,13 +26,14 @@ MeshPose mesh_pose(const MeshMotion& motion, double time) {
   prescribed.angular_velocity = motion.angular_velocity;
   prescribed.axis_point = motion.axis_point;
   prescribed.motion_start = motion.start;
-  const Wall w = wall_at(prescribed, time);
+  const Wall w = wall_at(prescribed, motion.timeline, time);
   MeshPose p;
   for (int i = 0; i < 9; ++i) p.rotation[i] = w.rotation[i];
   p.shift = w.shift;
   p.axis_point = motion.axis_point;
   p.velocity = w.velocity;
   p.angular_velocity = w.angular_velocity;
+  p.active = w.active;
   return p;
 }
 

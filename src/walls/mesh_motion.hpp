@@ -8,6 +8,7 @@
 
 #include "core/hd.hpp"
 #include "core/vec3.hpp"
+#include "walls/timeline.hpp"
 
 namespace gs {
 
@@ -16,6 +17,7 @@ struct MeshMotion {
   Vec3d angular_velocity;  // [rad/s], along the rotation axis (right-hand rule)
   Vec3d axis_point;        // a point of the rotation axis in the reference pose [m]
   double start = 0;        // the motion begins at this time [s]; at rest before
+  Timeline timeline;       // active window, tables, oscillation (walls/timeline.hpp)
 };
 
 // Rotation about the axis through `axis_point` along `axis_direction` (any
@@ -32,11 +34,13 @@ struct MeshPose {
   Vec3d axis_point;  // reference pose
   Vec3d velocity;
   Vec3d angular_velocity;
+  bool active = true;  // the mesh acts now (its timeline's active window); else it touches nothing
 };
 
 // Pose at absolute time `time` (Rodrigues rotation by |omega| t about omega,
 // shift = velocity t, t counted from the motion's start, zero velocities
-// before it), by the same code as the analytic walls (wall_at).
+// before it; or the timeline's tables and oscillation), by the same code as
+// the analytic walls (wall_at).
 MeshPose mesh_pose(const MeshMotion& motion, double time);
 
 GS_HD GS_INLINE Vec3d pose_rotate(const MeshPose& p, const Vec3d& v) {

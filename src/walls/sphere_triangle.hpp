@@ -317,6 +317,7 @@ GS_HD void for_each_mesh_contact_in(const MeshView& m, const std::int32_t* list,
 template <class Visitor>
 GS_HD void for_each_mesh_contact(const MeshView& m, const Vec3d& x, double radius, Visitor& visit) {
   for (std::int32_t k = 0; k < m.n_meshes; ++k) {
+    if (!m.pose[k].active) continue;  // outside its active window (walls/timeline.hpp)
     std::int32_t begin, end;
     m.cell_range(k, x, begin, end);
     if (end > begin) for_each_mesh_contact_in(m, m.cell_triangles + begin, end - begin, x, radius, visit);

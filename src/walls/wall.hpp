@@ -6,7 +6,12 @@ namespace gs {
 enum class WallKind : int {
   plane,    // infinite plane; particles live on the side `normal` points to
   disk,     // plane bounded by a circle of `radius` around `point` (cylinder end caps)
-  cylinder  // inside surface of a finite cylinder: base centre `point`, unit axis `normal`
+  cylinder, // inside surface of a finite cylinder: base centre `point`, unit axis `normal`
+  plate,    // thin flat sheet touched from both sides and at its rims: the plane through
+            // `point` across `normal`, within `radius` (may be infinite) of `point`, less a
+            // hole centred there (circular or rectangular; walls/sheet_geometry.hpp)
+  cone      // thin conical sheet (a hopper), touched from both sides and at its rims:
+            // radius `radius` at `point`, `end_radius` at point + length * normal
 };
 
 // One analytic wall as the kernels see it. Geometry is given in the wall's
@@ -18,7 +23,12 @@ struct Wall {
   Vec3d point;         // plane/disk: a point on it; cylinder: centre of the base circle
   Vec3d normal;        // plane/disk: unit normal into the particle side; cylinder: unit axis
   double radius = 0;   // disk and cylinder radius [m]
-  double length = 0;   // cylinder length along the axis [m]
+  double length = 0;   // cylinder and cone length along the axis [m]
+  // plate: the hole's half sizes [m]: {radius, 0} for a circular hole (no hole
+  // when 0), {along tangent, across it} for a rectangular one.
+  double hole_half[2] = {0, 0};
+  Vec3d tangent;          // plate with a rectangular hole: unit in-plane direction of its first side
+  double end_radius = 0;  // cone: radius at point + length * normal [m]
 
   // Prescribed motion: translation at `velocity`, rotation at `angular_velocity`
   // (rad/s, vector along the rotation axis) about `axis_point`.
@@ -32,6 +42,9 @@ struct Wall {
   // Current pose: x_world = rotation * (x_ref - axis_point) + axis_point + shift.
   double rotation[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   Vec3d shift;
+  // Whether the wall acts now (its timeline's active window, walls/timeline.hpp):
+  // an inactive wall touches nothing, so its contacts end and their history is released.
+  bool active = true;
 };
 
 // What a wall contact needs to know about the touching sphere.

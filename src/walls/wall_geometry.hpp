@@ -1,6 +1,7 @@
 #pragma once
 #include "core/hd.hpp"
 #include "core/vec3.hpp"
+#include "walls/sheet_geometry.hpp"
 #include "walls/wall.hpp"
 
 namespace gs {
@@ -35,7 +36,8 @@ GS_HD GS_INLINE Vec3d wall_to_reference(const Wall& w, const Vec3d& x_world) {
 }
 
 // Contact of a sphere (centre x, radius) with wall w at its current pose.
-// Returns true and fills c only when the overlap is strictly positive.
+// Returns true and fills c only when the overlap is strictly positive, and
+// never for a wall that is not active now.
 //
 // Every kind also accepts a centre that has slipped behind the surface by less
 // than its radius (overlap between radius and 2 radius), so a fast particle
@@ -51,7 +53,13 @@ GS_HD GS_INLINE Vec3d wall_to_reference(const Wall& w, const Vec3d& x_world) {
 //            overlap = radius - (R - rho), rho = distance from the axis; the
 //            normal points towards the axis. A centre exactly on the axis has
 //            no defined normal and gives no contact.
+//  plate, cone: thin sheets, touched from both sides and at their rims
+//            (walls/sheet_geometry.hpp): overlap = radius - |x - q|, q the
+//            nearest point of the sheet; a centre in the sheet gives no
+//            contact. No slipped-behind rule: a centre that crosses the sheet
+//            within a step is on its other side.
 GS_HD GS_INLINE bool wall_contact(const Wall& w, const Vec3d& x, double radius, WallContact& c) {
+  if (!w.active) return false;
   const Vec3d xr = wall_to_reference(w, x);
   Vec3d normal_ref;
   Vec3d point_ref;
@@ -69,6 +77,14 @@ GS_HD GS_INLINE bool wall_contact(const Wall& w, const Vec3d& x, double radius, 
     const Vec3d outward = radial * (1.0 / rho);
     normal_ref = -outward;
     point_ref = w.point + s * w.normal + w.radius * outward;
+  } else if (w.kind == WallKind::plate || w.kind == WallKind::cone) {
+    const Vec3d q = sheet_nearest(w, xr);  // relative to w.point
+    const Vec3d d = (xr - w.point) - q;
+    const double distance = norm(d);
+    overlap = radius - distance;
+    if (overlap <= 0 || !(distance > 0)) return false;
+    normal_ref = d * (1.0 / distance);
+    point_ref = w.point + q;
   } else {  // plane or disk
     const double d = dot(xr - w.point, w.normal);
     overlap = radius - d;

@@ -30,8 +30,9 @@ inline WallScreen wall_screen(const Wall& w) {
 }
 
 // False only when the sphere (centre x, radius) is certainly clear of the
-// wall: in front of a plane or disk by more than its radius, or nearer a
-// cylinder's axis than the cylinder radius less its own.
+// wall: in front of a plane or disk by more than its radius, further than its
+// radius from a plate's plane on either side, or nearer a cylinder's axis
+// than the cylinder radius less its own. A cone is always let through.
 GS_HD GS_INLINE bool wall_may_touch(const WallScreen& s, const Vec3d& x, double radius) {
   const Vec3d v = x - s.point;
   const double slack = 1e-9 * (std::fabs(x.x) + std::fabs(x.y) + std::fabs(x.z) + s.scale + radius);
@@ -40,7 +41,10 @@ GS_HD GS_INLINE bool wall_may_touch(const WallScreen& s, const Vec3d& x, double 
     const double clear = s.radius - radius - slack;  // largest distance from the axis without contact
     return !(clear > 0 && norm2(v) - along * along < clear * clear);
   }
-  return dot(v, s.normal) < radius + slack;
+  if (s.kind == WallKind::cone) return true;  // wall_contact is its only test
+  const double h = dot(v, s.normal);
+  if (s.kind == WallKind::plate) return std::fabs(h) < radius + slack;  // touched from both sides
+  return h < radius + slack;
 }
 
 }  // namespace gs

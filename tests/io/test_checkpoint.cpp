@@ -72,6 +72,7 @@ void expect_bitwise_equal(const Checkpoint& a, const Checkpoint& b) {
   EXPECT_TRUE(same_bytes(p.velocity, q.velocity));
   EXPECT_TRUE(same_bytes(p.angular_velocity, q.angular_velocity));
   EXPECT_TRUE(same_bytes(p.orientation, q.orientation));
+  EXPECT_TRUE(same_bytes(p.image, q.image));  // empty unless the run is periodic
   EXPECT_TRUE(same_bytes(p.force, q.force));
   EXPECT_TRUE(same_bytes(p.torque, q.torque));
   EXPECT_EQ(a.history.slots, b.history.slots);
@@ -222,6 +223,66 @@ TEST(Checkpoint, FlippedByteIsCaughtByTheChecksum) {
   const std::string why = refusal(path);
   EXPECT_NE(why.find("checksum mismatch"), std::string::npos) << why;
   EXPECT_NE(why.find(path), std::string::npos) << why;
+}
+
+// A rank of a restart reads only the particles it keeps, with their history
+// rows, from a file read in blocks (more particles than one block holds), and
+// they are bitwise those of the whole read.
+TEST(Checkpoint, PartReadHoldsTheKeptParticlesWithTheirHistory) {
+  ScratchDir dir;
+  const std::size_t n = (std::size_t(1) << 20) + 4099;
+  Checkpoint c = sample_checkpoint(n, 2);
+  for (std::size_t e = 0; e < c.history.partner.size(); ++e) c.history.peak_overlap.push_back(1e-9 * double(e));
+  // Image counts, as a periodic run keeps them: streamed like the other fields.
+  for (std::size_t i = 0; i < n; ++i)
+    c.particles.image.push_back({std::int32_t(i % 7) - 3, -std::int32_t(i % 5), std::int32_t(i >> 18)});
+  const std::string path = dir.file("big.h5");
+  write_checkpoint(path, c);
+  // x = 0.1 + i / 3: whole runs of ids on either side of block boundaries.
+  auto keep = [](const Vec3d& x) { return std::fmod(x.x, 1000.0) < 300.0 || (x.x > 349500 && x.x < 349600); };
+  const Checkpoint part = read_checkpoint(path, {kSceneHash}, keep);
+  std::vector<std::size_t> rows;
+  for (std::size_t i = 0; i < n; ++i)
+    if (keep(c.particles.position[i])) rows.push_back(i);
+  ASSERT_GT(rows.size(), n / 4);
+  ASSERT_LT(rows.size(), n / 2);
+  Checkpoint expected = c;
+  auto pick = [&rows](auto& v, std::size_t per) {
+    std::decay_t<decltype(v)> out;
+    for (std::size_t r : rows) out.insert(out.end(), v.begin() + std::ptrdiff_t(r * per),
+                                          v.begin() + std::ptrdiff_t((r + 1) * per));
+    v = out;
+  };
+  // An optional field the run does not keep (image) is empty.
+  for_each_particle_field(expected.particles, [&](const char*, auto& field) {
+    if (!field.empty()) pick(field, 1);
+  });
+  pick(expected.particles.force, 1);
+  pick(expected.particles.torque, 1);
+  pick(expected.history.partner, 2);
+  for_each_history_field(expected.history, [&](const char*, unsigned, auto& field) {
+    if (!field.empty()) pick(field, 2);
+  });
+  expect_bitwise_equal(expected, part);
+}
+
+// The checksum covers the whole file on every rank, whatever it keeps.
+TEST(Checkpoint, DamageOutsideTheKeptParticlesIsCaught) {
+  ScratchDir dir;
+  const std::string path = dir.file("checkpoint.h5");
+  write_checkpoint(path, sample_checkpoint());
+  edit_h5(path, [](hid_t f) {
+    const hid_t d = H5Dopen2(f, "particles/velocity", H5P_DEFAULT);
+    const double v[18] = {};
+    ASSERT_GE(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v), 0);
+    H5Dclose(d);
+  });
+  try {
+    read_checkpoint(path, {}, [](const Vec3d&) { return false; });
+    FAIL() << "a damaged checkpoint was read";
+  } catch (const CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find("checksum mismatch"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Checkpoint, WrongSceneIsRefused) {

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <tuple>
 
 #include "comm/device_link.hpp"
 #include "comm/domain_exchange.hpp"
@@ -74,6 +75,32 @@ ContactMap gathered_contacts(const Simulation& sim) {
   return contacts_of(ids, all);
 }
 
+std::vector<RemovedParticle> by_step_and_id(std::vector<RemovedParticle> r) {
+  std::sort(r.begin(), r.end(), [](const auto& a, const auto& b) { return std::tie(a.step, a.id) < std::tie(b.step, b.id); });
+  return r;
+}
+
+// Every rank's removed particles on rank 0, by step and id.
+std::vector<RemovedParticle> gathered_removed(Simulation& sim) {
+  const std::vector<RemovedParticle> mine = sim.take_removed();
+  Bytes b(mine.size() * sizeof(RemovedParticle));
+  if (!mine.empty()) std::memcpy(b.data(), mine.data(), b.size());
+  std::vector<RemovedParticle> all;
+  for (const Bytes& part : world().gather(b)) {
+    const std::size_t at = all.size();
+    all.resize(at + part.size() / sizeof(RemovedParticle));
+    if (!part.empty()) std::memcpy(all.data() + at, part.data(), part.size());
+  }
+  return by_step_and_id(all);
+}
+
+bool same_removals(const std::vector<RemovedParticle>& a, const std::vector<RemovedParticle>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (a[k].step != b[k].step || a[k].id != b[k].id || a[k].exit != b[k].exit || a[k].mass != b[k].mass) return false;
+  return true;
+}
+
 // GPU ranks, each on a GPU of its own, exchanging over NCCL: on the device
 // machine's multi-GPU kinds, with GS_TEST_BACKENDS naming cuda. Collective.
 bool gpu_ranks_ready() {
@@ -95,12 +122,21 @@ void expect_rank_independent(const SceneSpec& scene, long long steps, RunOptions
   many.run(steps);
   const ParticleSnapshot all = gather_snapshot(world(), many.snapshot());
   const ContactMap many_contacts = gathered_contacts(many);
+  const std::vector<RemovedParticle> removed = gathered_removed(many);
   if (world().rank() != 0) return;
   const ParticleSnapshot ref = one.snapshot();
+  const std::vector<RemovedParticle> ref_removed = by_step_and_id(one.take_removed());
   // The one-rank state's digest, for comparing builds (a refactor must not change it).
   std::printf("[ digest   ] %s: 0x%016" PRIx64 "\n", ::testing::UnitTest::GetInstance()->current_test_info()->name(),
               state_digest(ref, one.history()));
-  ASSERT_EQ(all.size(), scene.particles.size()) << "particles lost or duplicated";
+  ASSERT_EQ(all.size(), ref.size()) << "particles lost or duplicated";
+  if (scene.inlets.empty())
+    ASSERT_EQ(all.size() + removed.size(), scene.particles.size()) << "particles lost or duplicated";
+  EXPECT_TRUE(same_removals(removed, ref_removed)) << removed.size() << " removed on " << world().size()
+                                                   << " ranks, " << ref_removed.size() << " on one";
+  if (scene.has_exits()) {
+    EXPECT_GT(ref_removed.size(), 0u) << "nothing was removed";
+  }
   EXPECT_TRUE(same_bits(all.id, ref.id));
   EXPECT_TRUE(same_bits(all.position, ref.position)) << exchange->describe();
   EXPECT_TRUE(same_bits(all.velocity, ref.velocity));
@@ -154,6 +190,81 @@ TEST(RankIndependence, PolydisperseFrictionalSettlingWithSlabs) {
 
 TEST(RankIndependence, PolydisperseFrictionalSettlingWithMetis) {
   expect_rank_independent(settling_scene(DecompositionMethod::metis), 1500);
+}
+
+// An inlet above a settling bed, its region cut by the slabs (along x): every
+// rank draws the same candidates, marks those its own particles block, and
+// the ranks that own the accepted positions append them; the result is the
+// one-rank run's, ids included. Empty at first, then a stream that lands on
+// the bed across the slab boundaries.
+SceneSpec inlet_scene() {
+  SceneSpec s = frictional_box(0.02, 0.05);
+  RandomFillSpec fill;
+  fill.region.min = {0.0015, 0.0015, 0.0015};
+  fill.region.max = {0.0185, 0.0185, 0.0185};
+  fill.count = 200;
+  fill.size.kind = SizeSpec::Kind::uniform;
+  fill.size.radius_min = 0.0004;
+  fill.size.radius_max = 0.0012;
+  fill.seed = 3;
+  generate_random_fill(fill, s.particles);
+  InletSpec in;
+  in.region.min = {0.001, 0.001, 0.03};
+  in.region.max = {0.019, 0.019, 0.045};
+  in.size.kind = SizeSpec::Kind::uniform;
+  in.size.radius_min = 0.0004;
+  in.size.radius_max = 0.0008;
+  in.rate = 50000;
+  in.interval_steps = 20;
+  in.tmpl.velocity = {0, 0, -0.5};
+  in.velocity_spread = 0.2;
+  in.seed = 5;
+  s.inlets.push_back(in);
+  s.decomposition.axis = 0;
+  s.time_step = 2e-5;
+  return s;
+}
+constexpr long long kInletSteps = 1000;  // some 1000 particles inserted
+
+TEST(RankIndependence, InletFeedsBedAcrossSlabs) { expect_rank_independent(inlet_scene(), kInletSteps); }
+
+// Staged walls (docs/SCENES.md, walls): spheres thrown down through an
+// orifice plate onto a shaking gate that opens, a side wall pushed by a
+// velocity table, and a cone around them; every rank poses every wall alike.
+TEST(RankIndependence, StagedWallsPlatesAndCone) {
+  SceneSpec s = settling_scene(DecompositionMethod::slabs);
+  // Those clear of the plate, the cone and the shifted side wall at t = 0.
+  std::vector<ParticleInit> clear;
+  for (ParticleInit p : s.particles) {
+    const double rho = std::hypot(p.position.x - 0.01, p.position.y - 0.01);
+    const double from_cone = std::abs(0.006 + 0.225 * p.position.z - rho) * std::cos(std::atan(0.225));
+    if (p.position.z - p.radius < 0.0085 || from_cone < p.radius + 1e-4 || p.position.x - p.radius < 0.0025) continue;
+    p.id = ParticleId(clear.size());
+    p.velocity = {0, 0, -0.6};
+    clear.push_back(p);
+  }
+  s.particles = clear;
+  Wall orifice = plane_wall({0.01, 0.01, 0.008}, {0, 0, 1});
+  orifice.kind = WallKind::plate;
+  orifice.radius = 0.03;
+  orifice.hole_half[0] = 0.004;
+  Wall gate = plane_wall({0.01, 0.01, 0.004}, {0, 0, 1});
+  gate.kind = WallKind::plate;
+  gate.radius = 0.009;
+  Wall cone = plane_wall({0.01, 0.01, 0.0}, {0, 0, 1});
+  cone.kind = WallKind::cone;
+  cone.radius = 0.006;
+  cone.length = 0.04;
+  cone.end_radius = 0.015;
+  s.walls[0].point.x = 0.002;  // the side wall pushed in from x = 0.002 by the table
+  for (const Wall& w : {orifice, gate, cone}) s.walls.push_back(w);
+  s.wall_timelines.resize(s.walls.size());
+  s.wall_timelines[0].velocity = make_rate_table({0, 0.005, 0.01}, {Vec3d(), Vec3d(0.05, 0, 0), Vec3d()});
+  Timeline& g = s.wall_timelines[s.walls.size() - 2];
+  g.active.until = 0.012;
+  g.oscillation.amplitude = {0, 0, 0.0003};
+  g.oscillation.frequency = 60;
+  expect_rank_independent(s, 1000);
 }
 
 // Two lattices flying into each other across the slab boundary (no gravity,
@@ -218,6 +329,30 @@ TEST(RankIndependence, PeriodicStreamsAcrossMetisParts) {
   SceneSpec s = periodic_streaming_scene();
   s.decomposition.method = DecompositionMethod::metis;
   expect_rank_independent(s, kPeriodicSteps);
+}
+
+// The same two lattices, faster, in a domain open on every side: removed at
+// the faces as they stream out (or are scattered out), on whichever rank.
+TEST(RankIndependence, StreamsOutThroughOpenFaces) {
+  SceneSpec s = streaming_scene();
+  s.domain_min.x = -0.014;
+  s.domain_max.x = 0.014;
+  s.open_faces = 63;  // all six
+  for (ParticleInit& p : s.particles) p.velocity.x *= 3;
+  expect_rank_independent(s, 700);  // 3.5 ms: scattered ones have left sideways, the rest still cross
+}
+
+// Settling into a drain in a corner of the floor: removed there on the
+// lowest slab's rank, while the bed re-balances.
+TEST(RankIndependence, SettlesIntoACornerDrain) {
+  SceneSpec s = settling_scene(DecompositionMethod::slabs);
+  OutletRegion drain;
+  drain.min = {0, 0, 0};
+  drain.max = {0.008, 0.008, 0.004};
+  s.outlets.push_back({"drain", drain});
+  RunOptions o;
+  o.rebalance_interval = 200;
+  expect_rank_independent(s, 1500, o);
 }
 
 // The hysteretic normal law keeps each contact's peak overlap in its history
@@ -343,6 +478,10 @@ TEST_F(RankIndependenceOnGpus, StreamsThroughSlabBoundaryBothWays) {
 
 TEST_F(RankIndependenceOnGpus, PeriodicStreamsAcrossWrappingSlabs) {
   expect_rank_independent(periodic_streaming_scene(), kPeriodicSteps, options);
+}
+
+TEST_F(RankIndependenceOnGpus, InletFeedsBedAcrossSlabs) {
+  expect_rank_independent(inlet_scene(), kInletSteps, options);
 }
 
 }  // namespace

@@ -226,6 +226,39 @@ TEST_P(PeriodicTest, NonPeriodicRunKeepsNoImageCounts) {
   EXPECT_TRUE(sim.snapshot().image.empty());
 }
 
+// Periodic in x, open at zmin: a particle flying along x and falling wraps
+// across the x faces (never removed there, never a fault) and is removed when
+// it leaves through the open floor; an outlet in the box removes another.
+TEST_P(PeriodicTest, WrapsAcrossPeriodicFacesAndLeavesThroughOpenOnes) {
+  const double L = 0.01;
+  SceneSpec scene = periodic_scene(kX, {0, 0, 0}, {L, L, L});
+  scene.open_faces = 1u << 4;  // zmin
+  scene.gravity = {0, 0, -9.81};
+  OutletRegion box;
+  box.min = {0.0005, 0.0075, 0.0005};
+  box.max = {0.0025, 0.0095, 0.0095};
+  scene.outlets.push_back({"side", box});
+  scene.particles = {particle(0, kRadius, {0.008, 0.002, 0.008}, {0.5, 0, 0}),
+                     particle(1, kRadius, {0.005, 0.0085, 0.005}, {-0.4, 0, 0})};
+  scene.time_step = 1e-4;
+  Simulation sim(scene, {GetParam()});
+  sim.run(100);  // 10 ms: particle 0 has crossed x = L once, particle 1 has reached the outlet
+  ParticleSnapshot s = sim.snapshot();
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_EQ(s.id[0], 0u);
+  EXPECT_EQ(s.image[0].x, 1);
+  std::vector<RemovedParticle> removed = sim.take_removed();
+  ASSERT_EQ(removed.size(), 1u);
+  EXPECT_EQ(removed[0].id, 1u);
+  EXPECT_EQ(removed[0].exit, 0);  // the outlet
+  sim.run(400);  // 50 ms: fallen 12 mm, through the open floor
+  EXPECT_EQ(sim.snapshot().size(), 0u);
+  removed = sim.take_removed();
+  ASSERT_EQ(removed.size(), 1u);
+  EXPECT_EQ(removed[0].id, 0u);
+  EXPECT_EQ(removed[0].exit, 1);  // the open face zmin
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, PeriodicTest, testing::ValuesIn(test_backends()), backend_label);
 
 }  // namespace

@@ -95,6 +95,59 @@ TEST(PeriodicScene, WallsThatCannotMeetThePeriodicFacesAreRefused) {
                9, "walls[0]", "rotates about an axis");
 }
 
+// Plates and cones are touched at the particle's own position: they must end
+// inside the box along a periodic axis, a particle diameter clear of its faces.
+TEST(PeriodicScene, SheetsMustKeepClearOfThePeriodicFaces) {
+  auto with_wall = [](const std::string& wall) {
+    return edit("    material: glass\nparticles", "    material: glass\n  - " + wall + "\n    material: glass\nparticles");
+  };
+  EXPECT_EQ(error_of(with_wall("plate: {point: [0.01, 0.005, 0.02], normal: [0, 0, 1], radius: 0.002}")),
+            "(no error)");
+  // An unbounded plate reaches the faces.
+  expect_error(with_wall("plate: {point: [0.01, 0.005, 0.02], normal: [0, 0, 1]}"), 11, "walls[1]",
+               "would stop at them");
+  // Inside the box, but closer than a diameter (0.002 m) to x = 0.
+  expect_error(with_wall("plate: {point: [0.0025, 0.005, 0.02], normal: [0, 0, 1], radius: 0.002}"), 11, "walls[1]",
+               "clear of the periodic faces along x");
+  // A hopper as wide as the box along y.
+  expect_error(with_wall("cone: {base: [0.01, 0.005, 0.015], axis: [0, 0, 1], length: 0.01, base_radius: 0.001, "
+                         "half_angle: 30}"),
+               11, "walls[1]", "would stop at them");
+  // A small plate that slides along x would reach them.
+  expect_error(edit("    material: glass\nparticles",
+                    "    material: glass\n  - plate: {point: [0.01, 0.005, 0.02], normal: [0, 0, 1], radius: 0.002}\n"
+                    "    material: glass\n    motion: {velocity: [0.1, 0, 0]}\nparticles"),
+               11, "walls[1]", "may not move along the periodic axis x");
+}
+
+// A face cannot be both periodic and open: a particle leaving through it wraps.
+TEST(PeriodicScene, PeriodicFacesCannotBeOpen) {
+  EXPECT_EQ(error_of(edit("periodic: [x, y]}", "periodic: [x, y], open: [zmax]}")), "(no error)");
+  expect_error(edit("periodic: [x, y]}", "periodic: [x, y], open: [zmax, xmin]}"), 1, "domain.open[1]",
+               "the face 'xmin' cannot be open: the axis x is periodic");
+  expect_error(edit("periodic: [x, y]}", "open: [ymax], periodic: [x, y]}"), 1, "domain.open[0]",
+               "the axis y is periodic");
+}
+
+// Insertion checks a candidate against the particles without wrapping: an
+// inlet keeps a particle diameter (0.002 m) clear of the periodic faces.
+TEST(PeriodicScene, InletsMustKeepClearOfThePeriodicFaces) {
+  const std::string inlet = kChute + "inlets:\n  - name: feed\n    material: glass\n"
+                                     "    region: {box: {min: [0.003, 0.003, 0.02], max: [0.017, 0.007, 0.028]}}\n"
+                                     "    radius: 0.0005\n    rate: {count: 400}\n    total: {count: 40}\n";
+  EXPECT_EQ(error_of(inlet), "(no error)");
+  expect_error(edit("min: [0.003, 0.003, 0.02]", "min: [0.001, 0.003, 0.02]", inlet), 16, "inlets[0]",
+               "clear of the periodic faces along x");
+}
+
+// Flows count on the segment between sampled centres, which a wrap would fake.
+TEST(PeriodicScene, FlowsAreRefused) {
+  const std::string flow = kChute + "measurements:\n  flows:\n"
+                                    "    - {name: base, plane: {point: [0.01, 0.005, 0.005], normal: [1, 0, 0]}, every: 0.01}\n";
+  expect_error(flow, 16, "measurements.flows", "cannot be measured in a periodic scene");
+  EXPECT_EQ(error_of(edit(", periodic: [x, y]", "", flow)), "(no error)");
+}
+
 TEST(PeriodicScene, ParticlesOutsideTheBoxAreRefused) {
   const std::string msg = error_of(edit("max: [0.019, 0.009, 0.0092]", "max: [0.025, 0.009, 0.0092]"));
   EXPECT_NE(msg.find("not inside the domain"), std::string::npos) << msg;
