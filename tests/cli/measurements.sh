@@ -12,6 +12,7 @@ rm -rf "$work" && mkdir -p "$work" && cd "$work"
 export OMP_NUM_THREADS=1 OMP_WAIT_POLICY=passive
 mpi() { local np=$1; shift; "$mpiexec" --oversubscribe --allow-run-as-root -np "$np" "$gs" "$@"; }
 fail() { echo "FAIL: $*" >&2; exit 1; }
+command -v h5diff > /dev/null || fail "h5diff is not installed (Debian package hdf5-tools, tools/install_deps.sh)"
 same_measurements() {  # reference directory, other directory, what
   local n=0
   for f in "$1"/flow_*.csv "$1"/average_*.csv "$1"/average_*.xdmf; do

@@ -36,8 +36,11 @@ echo "restart across rank counts: bitwise equal"
 # 2. SIGTERM: the run checkpoints, says so and exits with 3.
 "$gs" run "$scene" --backend cpu --out term > term.log 2>&1 &
 pid=$!
-sleep 0.5
-kill -TERM $pid
+# Signal it as soon as it steps: a fast machine runs a small scene in well
+# under a second.
+for _ in $(seq 1000); do grep -qs "set up in" term/run.log && break; sleep 0.01; done
+kill -TERM $pid 2>/dev/null || fail "SIGTERM: the run had ended before the signal"
+
 set +e; wait $pid; code=$?; set -e
 [[ $code == 3 ]] || fail "SIGTERM: exit code $code, expected 3"
 grep -q "stopped by a signal" term/run.log || fail "SIGTERM: no message in the log"

@@ -6,6 +6,7 @@
 
 #include "scene/particle_sources.hpp"
 #include "scene/scene_loader.hpp"
+#include "scene_test_helpers.hpp"
 
 namespace gs {
 namespace {
@@ -35,24 +36,12 @@ time_step: {fraction_of_contact_time: 0.1}
 duration: 5
 )";
 
-std::string edit(const std::string& from, const std::string& to, std::string text = kSilo) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << "test bug: '" << from << "' not in the scene";
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
+std::string edit(const std::string& from, const std::string& to, const std::string& text = kSilo) {
+  return test::edited(text, from, to);
 }
 
 void expect_error(const std::string& text, int line, const std::string& key, const std::string& what) {
-  std::string msg = "(no error)";
-  try {
-    parse_scene(text, "silo.yaml");
-  } catch (const SceneError& e) {
-    msg = e.what();
-  }
-  const std::string where = "silo.yaml:" + std::to_string(line) + ": ";
-  EXPECT_EQ(msg.rfind(where, 0), 0u) << "expected " << where << " in: " << msg;
-  EXPECT_NE(msg.find(key), std::string::npos) << "expected key '" << key << "' in: " << msg;
-  EXPECT_NE(msg.find(what), std::string::npos) << "expected '" << what << "' in: " << msg;
+  test::expect_scene_error(text, line, key, what, "silo.yaml");
 }
 
 TEST(InletsLoader, SiloInletParses) {

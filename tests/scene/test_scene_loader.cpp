@@ -7,6 +7,7 @@
 #include "scene/scene_time_step.hpp"
 #include "scene/particle_sources.hpp"
 #include "scene/scene_loader.hpp"
+#include "scene_test_helpers.hpp"
 
 namespace gs {
 namespace {
@@ -34,29 +35,14 @@ output: {interval: 0.01, directory: res}
 )";
 
 // kGood with the first occurrence of `from` replaced by `to`.
-std::string edit(const std::string& from, const std::string& to, std::string text = kGood) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << "test bug: '" << from << "' not in the scene";
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
+std::string edit(const std::string& from, const std::string& to, const std::string& text = kGood) {
+  return test::edited(text, from, to);
 }
 
-std::string error_of(const std::string& text) {
-  try {
-    parse_scene(text, "scene.yaml");
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+std::string error_of(const std::string& text) { return test::scene_error_of(text); }
 
-// The error names the file and line, then the key path, then what is wrong.
 void expect_error(const std::string& text, int line, const std::string& key, const std::string& what) {
-  const std::string msg = error_of(text);
-  const std::string where = "scene.yaml:" + std::to_string(line) + ": ";
-  EXPECT_EQ(msg.rfind(where, 0), 0u) << "expected " << where << " in: " << msg;
-  EXPECT_NE(msg.find(key), std::string::npos) << "expected key '" << key << "' in: " << msg;
-  EXPECT_NE(msg.find(what), std::string::npos) << "expected '" << what << "' in: " << msg;
+  test::expect_scene_error(text, line, key, what);
 }
 
 TEST(SceneLoader, GoodSceneParses) {

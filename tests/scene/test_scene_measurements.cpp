@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "scene/scene_loader.hpp"
+#include "scene_test_helpers.hpp"
 
 namespace gs {
 namespace {
@@ -29,25 +30,10 @@ measurements:
     - {name: bed, box: {min: [0, 0, 0], max: [0.1, 0.1, 0.05]}, bins: [1, 1, 10], quantities: [solid_fraction, stress], every: 0.05}
 )";
 
-std::string edit(const std::string& from, const std::string& to) {
-  std::string text = kScene;
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << "test bug: '" << from << "' not in the scene";
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
-}
+std::string edit(const std::string& from, const std::string& to) { return test::edited(kScene, from, to); }
 
 void expect_error(const std::string& text, int line, const std::string& key, const std::string& what) {
-  std::string msg = "(no error)";
-  try {
-    parse_scene(text, "scene.yaml");
-  } catch (const SceneError& e) {
-    msg = e.what();
-  }
-  const std::string where = "scene.yaml:" + std::to_string(line) + ": ";
-  EXPECT_EQ(msg.rfind(where, 0), 0u) << "expected " << where << " in: " << msg;
-  EXPECT_NE(msg.find(key), std::string::npos) << "expected key '" << key << "' in: " << msg;
-  EXPECT_NE(msg.find(what), std::string::npos) << "expected '" << what << "' in: " << msg;
+  test::expect_scene_error(text, line, key, what);
 }
 
 TEST(SceneMeasurements, Parses) {

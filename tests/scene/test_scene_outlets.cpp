@@ -7,6 +7,7 @@
 
 #include "engine/particle_removal.hpp"
 #include "scene/scene_loader.hpp"
+#include "scene_test_helpers.hpp"
 
 namespace gs {
 namespace {
@@ -29,21 +30,8 @@ std::string with_domain(const std::string& domain) {
   return domain + kScene.substr(kScene.find('\n'));
 }
 
-std::string error_of(const std::string& text) {
-  try {
-    parse_scene(text, "scene.yaml");
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 void expect_error(const std::string& text, int line, const std::string& key, const std::string& what) {
-  const std::string msg = error_of(text);
-  const std::string where = "scene.yaml:" + std::to_string(line) + ": ";
-  EXPECT_EQ(msg.rfind(where, 0), 0u) << "expected " << where << " in: " << msg;
-  EXPECT_NE(msg.find(key), std::string::npos) << "expected key '" << key << "' in: " << msg;
-  EXPECT_NE(msg.find(what), std::string::npos) << "expected '" << what << "' in: " << msg;
+  test::expect_scene_error(text, line, key, what);
 }
 
 TEST(SceneOutlets, NoneByDefault) {
