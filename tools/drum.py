@@ -3,10 +3,11 @@
 number and the rolling resistance (docs/VALIDATION.md, "Rotating drum").
 
     tools/drum.py BINARY [--variant ci|medium|full] [--backends cpu,cuda]
-                  [--jobs N] [--keep DIR] [--plots DIR] [--write-cases]
+                  [--jobs N] [--keep DIR [--reuse] [--prune]] [--plots DIR]
+    tools/drum.py --write-cases
 
 A drum of radius R along y, periodic along its axis (no end caps, so no cap
-friction), is filled to about a third with equal spheres by a random fill,
+friction), is filled to 30 % with equal spheres by a random fill,
 settles under gravity at rest, then turns at Fr = omega^2 R / g from
 `settle` on. The tool writes one scene per (Fr, rolling_friction) case, runs
 them, and reads the CSV snapshots of the last part of the run (the drum
@@ -20,9 +21,9 @@ cross-section (x, z):
   middle 80 % of the chord, each column's solid fraction profile (sphere
   volumes binned by centre, summed over the snapshots) and the height where it
   falls to half the bulk's; a line fitted to those heights corrects the angle
-  (the dynamic angle of repose); the slopes of the upper and lower halves of
-  the surface measure its curvature (an S-shaped, cascading surface is
-  steeper in the middle than at its ends);
+  (the dynamic angle of repose); the slope of the middle third of the surface
+  against the outer thirds' measures its curvature (an S-shaped, cascading
+  surface is steeper in the middle than at its ends);
 * the airborne fraction: particles centred more than two diameters above the
   fitted surface (free flight: cataracting);
 * the fraction above the axis and the particles' mean angular velocity about
@@ -117,7 +118,7 @@ def scene_text(v, fr, mu_r, out_dir):
     count = int(round(FILL * math.pi * R * R * L * PACKING / (4.0 / 3.0 * math.pi * r ** 3)))
     m = 1.2 * r  # domain margin beyond the drum
     return f"""# Rotating drum, Fr = {fr:g}, rolling_friction = {mu_r:g} (tools/drum.py, docs/VALIDATION.md).
-# A drum of radius {R:g} m along y, periodic along its axis (no end caps), a third full of
+# A drum of radius {R:g} m along y, periodic along its axis (no end caps), {100 * FILL:g} % full of
 # {r * 2e3:g} mm glass spheres; it settles at rest, then turns from t = {v['settle']:g} s at
 # omega = sqrt(Fr g / R) = {w:.6g} rad/s about +y (the bed is dragged towards -x and rises there).
 domain: {{min: [{-R - m:.6g}, 0, {-R - m:.6g}], max: [{R + m:.6g}, {L:.6g}, {R + m:.6g}], periodic: [y]}}
