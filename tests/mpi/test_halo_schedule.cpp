@@ -1,0 +1,126 @@
+// When ranks rebuild their halo, run under mpiexec with 2, 3 or 4 ranks. A
+// rank keeps its ghosts (and its Verlet list) until some particle anywhere
+// has moved half the skin, as one rank keeps its Verlet list, and between
+// rebuilds only forwards the ghosts' positions and velocities: so the ranks
+// must rebuild at exactly the steps one rank rebuilds its list, and still
+// compute the one-rank run's bits.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "comm/scene_split.hpp"
+#include "comm/snapshot_gather.hpp"
+#include "scene/generators.hpp"
+#include "support/support.hpp"
+
+namespace gs::test {
+namespace {
+
+Transport& world() {
+  static std::unique_ptr<Transport> t = make_mpi_transport();
+  return *t;
+}
+
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+// Frictional spheres (1:2 in radius) falling onto the floor of a box cut
+// into slabs along z: they cross slab boundaries and pile up.
+SceneSpec falling_bed() {
+  SceneSpec s = base_scene(2500, 2000, 0.5, 0.5);
+  s.precision = Precision::fp32;
+  s.effects = kFriction;
+  s.gravity = {0, 0, -9.81};
+  s.domain_min = {-0.001, -0.001, -0.001};
+  s.domain_max = {0.021, 0.021, 0.041};
+  s.walls = {plane_wall({0, 0, 0}, {1, 0, 0}), plane_wall({0.02, 0, 0}, {-1, 0, 0}),
+             plane_wall({0, 0, 0}, {0, 1, 0}), plane_wall({0, 0.02, 0}, {0, -1, 0}), plane_wall({0, 0, 0}, {0, 0, 1})};
+  RandomFillSpec fill;
+  fill.region.min = {0.0015, 0.0015, 0.0015};
+  fill.region.max = {0.0185, 0.0185, 0.0385};
+  fill.count = 400;
+  fill.size.kind = SizeSpec::Kind::uniform;
+  fill.size.radius_min = 0.0006;
+  fill.size.radius_max = 0.0012;
+  fill.seed = 11;
+  generate_random_fill(fill, s.particles);
+  s.decomposition.axis = 2;
+  s.time_step = 2e-5;
+  return s;
+}
+
+void expect_same_state(const ParticleSnapshot& all, const ParticleSnapshot& ref) {
+  ASSERT_EQ(all.size(), ref.size()) << "particles lost or duplicated";
+  EXPECT_TRUE(same_bits(all.id, ref.id));
+  EXPECT_TRUE(same_bits(all.position, ref.position));
+  EXPECT_TRUE(same_bits(all.velocity, ref.velocity));
+  EXPECT_TRUE(same_bits(all.angular_velocity, ref.angular_velocity));
+  EXPECT_TRUE(same_bits(all.force, ref.force));
+}
+
+// One rank rebuilds its Verlet list when a particle has moved half the skin
+// since the last build; the ranks together must rebuild the halo (and with
+// it their lists) at those same steps and no others: not every step (the
+// whole point), not later (contacts would be missed), not earlier.
+TEST(HaloSchedule, RanksRebuildWhenOneRankRebuildsItsList) {
+  const SceneSpec s = falling_bed();
+  RunOptions o;
+  o.rebalance_interval = 0;  // a load-balance check would rebuild as well
+  const long long steps = 1500;
+  Simulation one(s, o);
+  one.run(steps);
+  const auto exchange = split_scene(s, world());
+  const double skin = o.verlet_skin * 2 * largest_radius(s);
+  ASSERT_EQ(exchange->set_skin(skin), skin) << "the coarse cells cut the skin";
+  Simulation many(s, o, exchange);
+  many.run(steps);
+  const ExchangeSplit x = exchange->split();
+  const ParticleSnapshot all = gather_snapshot(world(), many.snapshot());
+  if (world().rank() != 0) return;
+  const long long builds = one.neighbour_builds();
+  EXPECT_GT(builds, 10) << "the bed hardly moved: the test sees no rebuild";
+  EXPECT_LT(builds, steps / 5) << "one rank rebuilt its list at most steps";
+  EXPECT_EQ(many.neighbour_builds(), builds);
+  EXPECT_EQ(x.rebuilds, builds + 1) << "the halo is built once at the start, then at every rebuild";
+  EXPECT_EQ(x.forwards, steps - builds);
+  expect_same_state(all, one.snapshot());
+}
+
+// A sphere touched by 135 small ones: a CPU rank walks its Verlet list, kept
+// in id order, so it sums all of them as one rank does (the search of the
+// touching partners in the cells, which ranks used before, held 128).
+TEST(HaloSchedule, SphereTouchedByMoreThan128OnCpuRanks) {
+  SceneSpec s = base_scene(2500, 2000, 0.5);
+  s.domain_min = {0, 0, 0};
+  s.domain_max = {0.02, 0.02, 0.04};  // tall enough for 4 slabs
+  const Vec3d centre{0.01, 0.01, 0.01};
+  const double big = 0.003, small = 0.00045, shell = big + small - 1e-5;
+  ParticleInit p;
+  p.radius = big;
+  p.position = centre;
+  s.particles.push_back(p);
+  const int n = 135;  // on a Fibonacci sphere: neighbours 1.1 mm apart, more than a small diameter
+  for (int k = 0; k < n; ++k) {
+    const double z = 1 - (2 * k + 1.0) / n, r = std::sqrt(1 - z * z), phi = 2.399963229728653 * k;
+    p.radius = small;
+    p.position = centre + Vec3d{r * std::cos(phi), r * std::sin(phi), z} * shell;
+    s.particles.push_back(p);
+  }
+  for (std::size_t i = 0; i < s.particles.size(); ++i) s.particles[i].id = ParticleId(i);
+  s.decomposition.axis = 2;
+  s.time_step = 1e-6;
+  Simulation one(s, RunOptions{});
+  one.run(5);
+  Simulation many(s, RunOptions{}, split_scene(s, world()));
+  many.run(5);
+  const ParticleSnapshot all = gather_snapshot(world(), many.snapshot());
+  if (world().rank() != 0) return;
+  const ParticleSnapshot ref = one.snapshot();
+  EXPECT_GT(norm2(ref.force[0]), 0.0) << "the big sphere feels nothing";
+  expect_same_state(all, ref);
+}
+
+}  // namespace
+}  // namespace gs::test
