@@ -11,6 +11,7 @@
 #include "comm/scene_split.hpp"
 #include "comm/snapshot_gather.hpp"
 #include "scene/generators.hpp"
+#include "scene/particle_sources.hpp"
 #include "support/support.hpp"
 
 namespace gs::test {
