@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "comm/scene_split.hpp"
+#include "decomposition/coarse_grid.hpp"
 #include "comm/snapshot_gather.hpp"
 #include "scene/generators.hpp"
 #include "scene/particle_sources.hpp"
@@ -120,6 +121,41 @@ TEST(HaloSchedule, SphereTouchedByMoreThan128OnCpuRanks) {
   if (world().rank() != 0) return;
   const ParticleSnapshot ref = one.snapshot();
   EXPECT_GT(norm2(ref.force[0]), 0.0) << "the big sphere feels nothing";
+  expect_same_state(all, ref);
+}
+
+// Pairs of spheres that meet head-on across every face of the coarse cells
+// along z (so across every slab boundary, whatever the cuts): the upper one
+// starts a tenth of the skin above the face, the lower one its diameter plus
+// half the skin below, so they touch after each has moved 0.3 skins, before
+// the halo is rebuilt. The rank above sees the lower sphere only because
+// ghosts reach the diameter plus the skin: with the diameter alone it would
+// miss the contact until the next rebuild.
+TEST(HaloSchedule, ContactFormedAcrossASlabBoundaryBetweenRebuilds) {
+  SceneSpec s = base_scene(2500, 2000, 0.5, 0.5);
+  s.effects = kFriction;
+  s.domain_min = {0, 0, 0};
+  s.domain_max = {0.08, 0.01, 0.04};
+  s.decomposition.axis = 2;
+  s.time_step = 1e-5;
+  const double r = 0.001, d = 2 * r, skin = RunOptions{}.verlet_skin * d, v = 0.1;
+  const CoarseGrid g = CoarseGrid::make(s.domain_min, s.domain_max, d * (1 + RunOptions{}.verlet_skin));
+  for (int k = 2; k < g.dims[2]; ++k) {
+    const double face = g.face(2, k), x = 0.002 + 0.004 * (k - 2);
+    s.particles.push_back(particle(ParticleId(s.particles.size()), r, {x, 0.005, face + 0.1 * skin}, {0, 0, -v}));
+    s.particles.push_back(particle(ParticleId(s.particles.size()), r, {x, 0.005, face - d - 0.5 * skin}, {0, 0, v}));
+  }
+  Simulation one(s, RunOptions{});
+  const auto exchange = split_scene(s, world());
+  Simulation many(s, RunOptions{}, exchange);
+  const long long steps = 72;  // in contact from step 61 (0.3 skins at 1 um per step) for about 23 steps
+  one.run(steps);
+  many.run(steps);
+  const ParticleSnapshot all = gather_snapshot(world(), many.snapshot());
+  if (world().rank() != 0) return;
+  const ParticleSnapshot ref = one.snapshot();
+  EXPECT_EQ(exchange->split().rebuilds, 1) << "the halo was rebuilt before the contacts";
+  EXPECT_GT(norm2(ref.force[0]), 0.0) << "the pairs have not met";
   expect_same_state(all, ref);
 }
 
