@@ -6,8 +6,10 @@
 // compute the one-rank run's bits.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 
+#include "comm/device_link.hpp"
 #include "comm/scene_split.hpp"
 #include "decomposition/coarse_grid.hpp"
 #include "comm/snapshot_gather.hpp"
@@ -131,7 +133,7 @@ TEST(HaloSchedule, SphereTouchedByMoreThan128OnCpuRanks) {
 // the halo is rebuilt. The rank above sees the lower sphere only because
 // ghosts reach the diameter plus the skin: with the diameter alone it would
 // miss the contact until the next rebuild.
-TEST(HaloSchedule, ContactFormedAcrossASlabBoundaryBetweenRebuilds) {
+void expect_contacts_across_boundaries(const RunOptions& o) {
   SceneSpec s = base_scene(2500, 2000, 0.5, 0.5);
   s.effects = kFriction;
   s.domain_min = {0, 0, 0};
@@ -145,9 +147,10 @@ TEST(HaloSchedule, ContactFormedAcrossASlabBoundaryBetweenRebuilds) {
     s.particles.push_back(particle(ParticleId(s.particles.size()), r, {x, 0.005, face + 0.1 * skin}, {0, 0, -v}));
     s.particles.push_back(particle(ParticleId(s.particles.size()), r, {x, 0.005, face - d - 0.5 * skin}, {0, 0, v}));
   }
-  Simulation one(s, RunOptions{});
+  Simulation one(s, o);
   const auto exchange = split_scene(s, world());
-  Simulation many(s, RunOptions{}, exchange);
+  if (o.backend == Backend::cuda) exchange->use_device_link(make_nccl_link(world()));
+  Simulation many(s, o, exchange);
   const long long steps = 72;  // in contact from step 61 (0.3 skins at 1 um per step) for about 23 steps
   one.run(steps);
   many.run(steps);
@@ -157,6 +160,21 @@ TEST(HaloSchedule, ContactFormedAcrossASlabBoundaryBetweenRebuilds) {
   EXPECT_EQ(exchange->split().rebuilds, 1) << "the halo was rebuilt before the contacts";
   EXPECT_GT(norm2(ref.force[0]), 0.0) << "the pairs have not met";
   expect_same_state(all, ref);
+}
+
+TEST(HaloSchedule, ContactFormedAcrossASlabBoundaryBetweenRebuilds) { expect_contacts_across_boundaries(RunOptions{}); }
+
+// The same on GPU ranks, each on a GPU of its own, over NCCL, against one
+// GPU (GS_TEST_BACKENDS naming cuda; skipped otherwise): the GPU keeps no
+// Verlet list, but its halo follows the same schedule.
+TEST(HaloSchedule, ContactFormedAcrossASlabBoundaryOnGpus) {
+  const std::vector<Backend> b = test_backends();
+  const bool wanted = std::find(b.begin(), b.end(), Backend::cuda) != b.end() && nccl_available();
+  const bool own_gpu = wanted && cuda_device_available() && select_cuda_device(world().local_rank());
+  if (world().min(own_gpu ? 1 : 0) == 0) GTEST_SKIP() << "needs GS_TEST_BACKENDS with cuda, NCCL, and a GPU per rank";
+  RunOptions o;
+  o.backend = Backend::cuda;
+  expect_contacts_across_boundaries(o);
 }
 
 }  // namespace
