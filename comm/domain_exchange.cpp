@@ -53,7 +53,7 @@ OwnerMapHost DomainExchange::owner_map() const {
 std::vector<int> DomainExchange::neighbours() const {
   std::vector<int> peers = decomposition_->neighbours(rank());
   if (box_.axes == 0) return peers;
-  const std::vector<std::vector<int>> near = halo_neighbours(owner_map(), halo_, ranks());
+  const std::vector<std::vector<int>> near = halo_neighbours(owner_map(), reach(), ranks());
   const std::vector<int>& mine = near[std::size_t(rank())];
   peers.insert(peers.end(), mine.begin(), mine.end());
   std::sort(peers.begin(), peers.end());
@@ -81,6 +81,8 @@ ParticleRouter& DomainExchange::router(const ParticleStore& s, const std::vector
     router_ = make_particle_router(s.position.backend());
     router_backend_ = s.position.backend();
     list_ = DeviceArray<Index>(router_backend_);
+    send_list_.clear();
+    plan_valid_ = false;
     outbox_.clear();
     inbox_.clear();
     map_current_ = false;
@@ -102,14 +104,16 @@ std::vector<MessageHeader> DomainExchange::trade(ParticleMovement& k, const Part
   while (outbox_.size() < n) {
     outbox_.emplace_back(router_backend_);
     inbox_.emplace_back(router_backend_);
+    send_list_.emplace_back(router_backend_);
   }
   std::vector<Bytes> send(n), recv;
   for (std::size_t p = 0; p < n; ++p) {
-    router_->select(int(p), list_);
-    sent_ += list_.size();
+    DeviceArray<Index>& list = send_list_[p];
+    router_->select(int(p), list);
+    sent_ += list.size();
     lap(k, &ExchangeSplit::route);
-    if (list_.size() == 0) continue;
-    const MessageHeader h = k.pack(s, list_, with_history, outbox_[p]);
+    if (list.size() == 0) continue;
+    const MessageHeader h = k.pack(s, list, with_history, outbox_[p]);
     const std::size_t payload = link_ ? 0 : outbox_[p].size();
     send[p].resize(sizeof(h) + payload);
     std::memcpy(send[p].data(), &h, sizeof(h));
@@ -153,6 +157,7 @@ void DomainExchange::unpack(ParticleMovement& k, ParticleStore& s, const std::ve
 }
 
 void DomainExchange::send_to_owners(ParticleStore& s, ParticleMovement& k, const std::vector<int>& peers) {
+  plan_valid_ = false;
   s.drop_ghosts();
   last_lap_ = std::chrono::steady_clock::now();
   router(s, peers).tag_owners(s);
@@ -177,9 +182,22 @@ void DomainExchange::refresh_ghosts(ParticleStore& s, ParticleMovement& k) {
   last_lap_ = std::chrono::steady_clock::now();
   // Decomposition::neighbours() holds every rank within the halo of an owned
   // particle, so no ghost is tagged for a rank that is not a peer.
-  router(s, peers_).tag_ghosts(s, halo_);
+  router(s, peers_).tag_ghosts(s, reach());
   lap(k, &ExchangeSplit::route);
-  unpack(k, s, trade(k, s, peers_, false), true);
+  const std::vector<MessageHeader> arrived = trade(k, s, peers_, false);
+  ghost_first_.assign(peers_.size(), 0);
+  ghost_count_.assign(peers_.size(), 0);
+  Index at = s.n_owned;
+  for (std::size_t p = 0; p < peers_.size(); ++p) {
+    ghost_first_[p] = at;
+    ghost_count_[p] = Index(arrived[p].count);
+    at += ghost_count_[p];
+  }
+  unpack(k, s, arrived, true);
+  router_->keep_reference(s);
+  plan_revision_ = s.revision;
+  plan_valid_ = true;
+  ++split_.rebuilds;
 }
 
 bool DomainExchange::rebalance(ParticleStore& s, ParticleMovement& k) {

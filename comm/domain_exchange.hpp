@@ -18,7 +18,8 @@ namespace gs {
 
 class DomainExchange final : public RankExchange {
  public:
-  // halo: interaction range (the largest particle diameter); box: the
+  // halo: interaction range (the largest particle diameter), to which
+  // set_skin adds the skin; box: the
   // domain's periodic axes, across whose faces halos reach.
   DomainExchange(Transport& transport, std::unique_ptr<Decomposition> decomposition, double halo,
                  const DecompositionSpec& spec, const PeriodicBox& box = {});
@@ -28,6 +29,9 @@ class DomainExchange final : public RankExchange {
   bool owns(const Vec3d& x) const override { return decomposition_->owner(x) == rank(); }
   void migrate(ParticleStore& s, ParticleMovement& k) override;
   void refresh_ghosts(ParticleStore& s, ParticleMovement& k) override;
+  double set_skin(double skin) override;
+  bool halo_stale(const ParticleStore& s, ParticleMovement& k, bool due) override;
+  void forward_ghosts(ParticleStore& s, ParticleMovement& k) override;
   bool rebalance(ParticleStore& s, ParticleMovement& k) override;
   std::string first_fault(const std::string& local) override;
   long long total(long long local) override;
@@ -57,11 +61,13 @@ class DomainExchange final : public RankExchange {
   // The ranks this one trades ghosts with: the decomposition's neighbours,
   // and across the periodic faces those on the other side.
   std::vector<int> neighbours() const;
+  double reach() const { return halo_ + skin_; }  // how far ghosts reach
   OwnerMapHost owner_map() const;  // the decomposition's, with the periodic box
 
   Transport& transport_;
   std::unique_ptr<Decomposition> decomposition_;
   double halo_;
+  double skin_ = 0;
   DecompositionSpec spec_;
   PeriodicBox box_;
   std::vector<int> peers_;  // neighbours of this rank, ascending
@@ -71,7 +77,15 @@ class DomainExchange final : public RankExchange {
   std::unique_ptr<ParticleRouter> router_;
   Backend router_backend_ = Backend::cpu;
   bool map_current_ = false;     // the router holds decomposition_'s current map
-  DeviceArray<Index> list_;      // store indices the router selected
+  DeviceArray<Index> list_;      // store indices the router selected (staying particles)
+  // The halo's plan, from the last refresh_ghosts (LAMMPS's borders(), Cabana's
+  // Halo): per peer the owned particles sent as ghosts (store indices), and
+  // where that peer's ghosts lie here. Valid while the store's revision is
+  // plan_revision_.
+  std::vector<DeviceArray<Index>> send_list_;
+  std::vector<Index> ghost_first_, ghost_count_;
+  std::uint64_t plan_revision_ = 0;
+  bool plan_valid_ = false;
   std::vector<DeviceArray<unsigned char>> outbox_, inbox_;  // one message per peer
   std::unique_ptr<DeviceLink> link_;
   std::size_t sent_ = 0;         // particles trade() sent

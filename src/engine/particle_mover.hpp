@@ -67,6 +67,8 @@ class ParticleMover final : public ParticleMovement {
   MessageHeader pack(const ParticleStore& s, const DeviceArray<Index>& which, bool with_history,
                      DeviceArray<unsigned char>& out) const override;
   void unpack(ParticleStore& s, const MessageHeader& h, const unsigned char* payload, bool as_ghosts) override;
+  void pack_forward(const ParticleStore& s, const DeviceArray<Index>& which, unsigned char* out) const override;
+  void unpack_forward(ParticleStore& s, const unsigned char* payload, Index first, Index count) override;
   void keep_owned(ParticleStore& s, const DeviceArray<Index>& keep) override;
   void reorder(ParticleStore& s, const DeviceArray<Index>& order) override;
   void append(ParticleStore& s, const ParticleRecords& r, bool as_ghosts) override;
@@ -118,3 +120,4 @@ class ParticleMover final : public ParticleMovement {
 
 #include "engine/particle_mover_history.hpp"
 #include "engine/particle_mover_transfer.hpp"
+#include "engine/particle_mover_forward.hpp"

@@ -12,9 +12,13 @@ namespace gs {
 // Where the exchange's time goes, summed over the timed steps only (see
 // Simulation::phase_seconds): deciding who goes where, packing messages,
 // moving them (which includes waiting for slower peers), and unpacking
-// arrivals and compacting the owned particles.
+// arrivals and compacting the owned particles. Forwarding between rebuilds
+// counts as pack, transfer and unpack; deciding whether to rebuild as route.
+// The counts cover every step, timed or not.
 struct ExchangeSplit {
   double route = 0, pack = 0, transfer = 0, unpack = 0;
+  long long rebuilds = 0;  // steps that migrated and selected the ghosts anew
+  long long forwards = 0;  // steps that only forwarded the ghosts' changing fields
   double total() const { return route + pack + transfer + unpack; }
 };
 
@@ -30,8 +34,24 @@ class RankExchange {
   // history, to their new owners; arrivals are appended. Drops the ghosts.
   virtual void migrate(ParticleStore& s, ParticleMovement& k) = 0;
   // Replaces the ghosts with copies of the neighbours' particles that lie
-  // within interaction range of this rank's region.
+  // within the halo (interaction range plus skin) of this rank's region, and
+  // records who sent what (the send lists, where each peer's ghosts lie) and
+  // the owned positions, for forward_ghosts and halo_stale.
   virtual void refresh_ghosts(ParticleStore& s, ParticleMovement& k) = 0;
+  // The skin [m] the halo adds to the interaction range; returns the skin it
+  // will use: less where the decomposition's coarse cells are narrower than
+  // range plus skin (its neighbours then hold only ranks within the cells).
+  virtual double set_skin(double skin) = 0;
+  // Collective: whether the halo must be rebuilt now (migrate or rebalance,
+  // then refresh_ghosts): on some rank `due` holds, its store changed since
+  // the last refresh_ghosts (ParticleStore::revision: removal, insertion), or
+  // an owned particle moved more than half the skin since then. Until then
+  // every contact partner of an owned particle is a ghost already (docs/MULTI_RANK.md).
+  virtual bool halo_stale(const ParticleStore& s, ParticleMovement& k, bool due) = 0;
+  // Between rebuilds: each ghost gets its owner's changing fields
+  // (engine/ghost_forward.hpp) over the send lists of the last refresh_ghosts.
+  // Owned particles stay on this rank, even those that left its region.
+  virtual void forward_ghosts(ParticleStore& s, ParticleMovement& k) = 0;
   // Collective. Re-partitions when the load imbalance (max / mean particles
   // per rank) exceeds the scene's threshold, and migrates; true if it did.
   virtual bool rebalance(ParticleStore& s, ParticleMovement& k) = 0;

@@ -81,6 +81,9 @@ void Simulation::set_up(const SceneSpec& scene) {
   const double diameter = 2.0 * largest_radius(scene);
   skin_ = kernels_->neighbours().uses_verlet_list() ? options_.verlet_skin * diameter : 0.0;
   grid_ = make_cell_grid(scene.domain_min, scene.domain_max, diameter + skin_, periodic_box(scene));
+  // The halo's skin, with or without a Verlet list: ghosts then need
+  // selecting only when a particle has moved half of it.
+  if (exchange_) exchange_->set_skin(options_.verlet_skin * diameter);
   walls_ = scene.walls;
   removes_ = scene.has_exits();
   if (removes_)
@@ -227,28 +230,17 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
     // Removed where the drift took them, before they can migrate or touch anything.
     if (removes_) kernels_->removal().remove(store_, p.step, removed_);
     timings_.integrate += phase_seconds(t0);
-    if (exchange_) step_particles_between_ranks();
+    if (exchange_) exchange_particles();
 
-    // Ghosts are refreshed every step, so with ranks the contacts are found
-    // anew every step; a single rank with a Verlet list keeps it while it
-    // covers every contact, and re-sorts memory only when it rebuilds it.
+    // A Verlet list is kept while it covers every contact (it is rebuilt,
+    // with ranks, after every rebuild of the halo); without one the cell list
+    // is built every step. Memory is re-sorted only at a rebuild.
     t0 = Clock::now();
-    const bool stale = exchange_ || kernels_->neighbours().stale(store_);
-    if (stale && options_.reorder_interval > 0 && step_ + 1 - last_reorder_ >= options_.reorder_interval) {
-      store_.drop_ghosts();
-      kernels_->neighbours().build_cell_list(store_, grid_);
-      kernels_->movement().reorder(store_, kernels_->neighbours().cell_order());
-      last_reorder_ = step_ + 1;
+    if (kernels_->neighbours().stale(store_)) {
+      if (!exchange_) reorder_if_due();
+      rebuild_neighbours();
+      ++neighbour_builds_;
     }
-    timings_.neighbours += phase_seconds(t0);
-    if (exchange_) {
-      t0 = Clock::now();
-      exchange_->refresh_ghosts(store_, kernels_->movement());
-      timings_.exchange += phase_seconds(t0);
-    }
-    t0 = Clock::now();
-    if (stale && exchange_) kernels_->neighbours().build_for_one_step(store_, grid_);
-    else if (stale) rebuild_neighbours();
     timings_.neighbours += phase_seconds(t0);
 
     t0 = Clock::now();
@@ -285,13 +277,38 @@ double Simulation::phase_seconds(std::chrono::steady_clock::time_point start) co
   return seconds_since(start);
 }
 
-// Migration every step, a load-balance check every rebalance_interval steps.
-void Simulation::step_particles_between_ranks() {
-  const auto t0 = Clock::now();
+// The halo as LAMMPS keeps it: rebuilt (migration or a load-balance check,
+// then the ghosts selected anew within the interaction range plus the skin)
+// only when some rank needs it, else the ghosts' positions and velocities
+// forwarded over the recorded send lists, particles staying where they are.
+void Simulation::exchange_particles() {
+  auto t0 = Clock::now();
   const long long next = step_ + 1;
   const bool balance = options_.rebalance_interval > 0 && next % options_.rebalance_interval == 0;
+  if (!exchange_->halo_stale(store_, kernels_->movement(), balance || rebuild_due_)) {
+    exchange_->forward_ghosts(store_, kernels_->movement());
+    timings_.exchange += phase_seconds(t0);
+    return;
+  }
+  rebuild_due_ = false;
   if (!(balance && exchange_->rebalance(store_, kernels_->movement()))) exchange_->migrate(store_, kernels_->movement());
   timings_.exchange += phase_seconds(t0);
+  t0 = Clock::now();
+  reorder_if_due();
+  timings_.neighbours += phase_seconds(t0);
+  t0 = Clock::now();
+  exchange_->refresh_ghosts(store_, kernels_->movement());
+  timings_.exchange += phase_seconds(t0);
+}
+
+// Every reorder_interval steps at most, the owned particles (no ghosts) are
+// re-sorted in memory by cell.
+void Simulation::reorder_if_due() {
+  if (options_.reorder_interval <= 0 || step_ + 1 - last_reorder_ < options_.reorder_interval) return;
+  store_.drop_ghosts();
+  kernels_->neighbours().build_cell_list(store_, grid_);
+  kernels_->movement().reorder(store_, kernels_->neighbours().cell_order());
+  last_reorder_ = step_ + 1;
 }
 
 void Simulation::check_fault() {

@@ -25,7 +25,7 @@ struct SimulationFault : std::runtime_error {
 struct RunOptions {
   Backend backend = Backend::cpu;
   int reorder_interval = 25;     // steps between re-sorting particle memory by cell
-  double verlet_skin = 0.1;      // Verlet list skin (CPU), in largest particle diameters
+  double verlet_skin = 0.1;      // Verlet list and halo skin, in largest particle diameters
   int fault_check_interval = 50; // steps between reading the fault flag
   int rebalance_interval = 500;  // steps between load-balance checks (several ranks)
 };
@@ -33,7 +33,8 @@ struct RunOptions {
 class Simulation {
  public:
   // `exchange`: null for a single rank; otherwise this rank keeps the scene's
-  // particles it owns and trades the others with its neighbours every step.
+  // particles it owns and trades with its neighbours: every step the ghosts'
+  // positions and velocities, and when the halo is rebuilt the particles.
   Simulation(const SceneSpec& scene, const RunOptions& options, std::shared_ptr<RankExchange> exchange = nullptr);
   // Continues from `restart` instead of the scene's initial particles.
   // Neither constructor throws on a fault in the first forces (too many
@@ -85,6 +86,9 @@ class Simulation {
   // Wall time in run() per phase: the total is measured, its split over the
   // phases is that of the timed steps (every kTimedEvery-th, see phase_seconds).
   StepTimings timings() const;
+  // Builds of the neighbour structure in run() so far (a Verlet list's
+  // rebuilds; every step without one).
+  long long neighbour_builds() const { return neighbour_builds_; }
   // Wall time of the set-up of a new run (zero after a restart).
   struct SetupTimings {
     double particles = 0;     // generating and uploading the owned particles, the first ghosts
@@ -106,7 +110,8 @@ class Simulation {
   void insert_due();
   void append_inserted(const std::vector<ParticleInit>& inserted);
   void measure_contacts();  // the contact pass, now
-  void step_particles_between_ranks();
+  void exchange_particles();
+  void reorder_if_due();
   double phase_seconds(std::chrono::steady_clock::time_point start) const;
   static constexpr long long kTimedEvery = 16;  // steps between timed ones
 
@@ -124,6 +129,8 @@ class Simulation {
   double time_ = 0;
   long long step_ = 0;
   long long last_reorder_ = 0;  // step of the last memory re-sort
+  long long neighbour_builds_ = 0;
+  bool rebuild_due_ = false;  // the store changed (insertion): the halo is rebuilt at the next step
   long long contact_measure_step_ = -1;  // the step of the next contact pass; -1: none
   long long measured_step_ = -1;         // the step of the last one
   double contact_pass_seconds_ = 0;

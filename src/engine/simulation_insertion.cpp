@@ -94,7 +94,10 @@ void Simulation::append_inserted(const std::vector<ParticleInit>& inserted) {
   store_.drop_ghosts();
   kernels_->movement().append(store_, r, false);
   kernels_->movement().set_forces(store_, force, torque);
-  if (exchange_) exchange_->refresh_ghosts(store_, kernels_->movement());
+  // Ghosts are selected anew, after a migration, at the next step: owned
+  // particles may lie up to half a skin outside their rank's region now,
+  // and a halo selected from here would not last half a skin more.
+  rebuild_due_ = true;
 }
 
 }  // namespace gs

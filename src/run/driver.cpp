@@ -314,7 +314,8 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
     const ExchangeSplit x = exchange->split();
     const double sum = x.total() > 0 ? x.total() : 1;
     out.log("exchange split (rank 0, timed steps): route %.0f%%, pack %.0f%%, transfer and waiting %.0f%%, "
-            "unpack %.0f%%\n", 100 * x.route / sum, 100 * x.pack / sum, 100 * x.transfer / sum, 100 * x.unpack / sum);
+            "unpack %.0f%%; halo rebuilt %lld times, forwarded %lld times\n", 100 * x.route / sum, 100 * x.pack / sum,
+            100 * x.transfer / sum, 100 * x.unpack / sum, x.rebuilds, x.forwards);
   }
   out.log("peak %s memory (rank 0): %s\n", backend_name(sim.backend()),
           human_bytes(double(backend_peak_bytes(sim.backend()))).c_str());

@@ -416,38 +416,6 @@ TEST(RankIndependence, LatticeSetUpHoldsOnlyEachRanksOwn) {
   EXPECT_TRUE(same_bits(all.velocity, ref.velocity));
 }
 
-// A CPU rank searches each particle's touching partners in a buffer of 128
-// (TouchingInIdOrder): a sphere touched by 135 small ones stops the run on
-// every rank with a fault that says so, instead of losing contacts.
-TEST(RankIndependence, SphereTouchedByMoreThan128IsAFaultOnCpuRanks) {
-  SceneSpec s = base_scene(2500, 2000, 0.5);
-  s.domain_min = {0, 0, 0};
-  s.domain_max = {0.02, 0.02, 0.04};  // tall enough for 4 slabs of one interaction range
-  const Vec3d centre{0.01, 0.01, 0.01};
-  const double big = 0.003, small = 0.00045, shell = big + small - 1e-5;
-  ParticleInit p;
-  p.radius = big;
-  p.position = centre;
-  s.particles.push_back(p);
-  const int n = 135;  // on a Fibonacci sphere: neighbours 1.1 mm apart, more than a small diameter
-  for (int k = 0; k < n; ++k) {
-    const double z = 1 - (2 * k + 1.0) / n, r = std::sqrt(1 - z * z), phi = 2.399963229728653 * k;
-    p.radius = small;
-    p.position = centre + Vec3d{r * std::cos(phi), r * std::sin(phi), z} * shell;
-    s.particles.push_back(p);
-  }
-  for (std::size_t i = 0; i < s.particles.size(); ++i) s.particles[i].id = ParticleId(i);
-  s.decomposition.axis = 2;
-  s.time_step = 1e-6;
-  Simulation many(s, RunOptions{}, split_scene(s, world()));
-  try {
-    many.run(5);
-    ADD_FAILURE() << "135 touching spheres were accepted";
-  } catch (const SimulationFault& e) {
-    EXPECT_NE(std::string(e.what()).find("more than 128 particles touch"), std::string::npos) << e.what();
-  }
-}
-
 // The same scenes on GPU ranks over NCCL against one GPU: bitwise too, since
 // each particle's sum runs in partner-id order on either backend.
 class RankIndependenceOnGpus : public testing::Test {
