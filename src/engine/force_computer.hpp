@@ -83,10 +83,15 @@ class ForceComputer final : public ForceComputation {
 
  private:
   // Calls f with the contact partners the force computation visits: the
-  // Verlet list while it is valid, else the cells (in id order on a CPU).
+  // Verlet list while it is valid, else (a CPU rank's one-step build) the
+  // touching partners in the cells, in id order.
   template <class F>
   void with_candidates(ParticleStore& s, long long step, F&& f) {
-    if constexpr (Exec::verlet_list) {
+    if constexpr (Exec::verlet_list && !Exec::one_step_cell_scan) {
+      // Every build, a rank's one-step ones too, writes the list.
+      if (!neighbours_.list_valid(s)) throw std::logic_error("forces before the Verlet list was built");
+      f(neighbours_.list_candidates());
+    } else if constexpr (Exec::verlet_list) {
       if (neighbours_.list_valid(s)) {
         f(neighbours_.list_candidates());
       } else {

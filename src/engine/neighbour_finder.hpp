@@ -1,6 +1,6 @@
 #pragma once
 // NeighbourSearch over an execution policy: the cell list, and the Verlet
-// list where the policy keeps one (Exec::verlet_list, the CPU).
+// list where the policy keeps one (Exec::verlet_list: both backends).
 #include <stdexcept>
 
 #include "engine/neighbour_search.hpp"
@@ -26,9 +26,15 @@ class NeighbourFinder final : public NeighbourSearch {
       build_verlet_list<Exec>(verlet_, cells_, s.position.data(), s.radius.data(), s.id.data(), s.n_owned, s.size(),
                               skin);
       built_at_ = s.revision;
+      skin_ = skin;
     }
   }
-  void build_for_one_step(const ParticleStore& s, const CellGrid& grid) override { build_cell_list(s, grid); }
+  // Exec::one_step_cell_scan: the force kernel scans the cells; else a list
+  // for this step, with the skin of the last build (the constructor's).
+  void build_for_one_step(const ParticleStore& s, const CellGrid& grid) override {
+    if constexpr (Exec::one_step_cell_scan) build_cell_list(s, grid);
+    else build(s, grid, skin_);
+  }
   bool stale(const ParticleStore& s) const override {
     if constexpr (Exec::verlet_list)
       return !list_valid(s) || verlet_list_stale<Exec>(verlet_, s.position.data(), s.n_owned, s.size());
@@ -52,6 +58,7 @@ class NeighbourFinder final : public NeighbourSearch {
   CellList cells_;
   VerletList verlet_;  // empty where Exec::verlet_list is false
   std::uint64_t built_at_ = 0;  // the store's revision at the Verlet list's build
+  double skin_ = 0;             // the skin of the last build
 };
 
 }  // namespace gs

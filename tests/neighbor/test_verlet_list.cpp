@@ -1,7 +1,9 @@
-// The CPU backend's Verlet list (neighbor/verlet_list.hpp): it holds exactly
-// the pairs a brute-force search finds within r_i + r_j + skin, in ascending
-// id; it goes stale when a particle has moved more than half the skin; and
-// a run's result does not depend on when the list is rebuilt.
+// The Verlet list (neighbor/verlet_list.hpp): it holds exactly the pairs a
+// brute-force search finds within r_i + r_j + skin, in ascending id; it goes
+// stale when a particle has moved more than half the skin (both checked on
+// the CPU's list, the build the GPU's follows); and on every backend a run's
+// forces are those of a brute-force search after many rebuilds, and its
+// result does not depend on when the list is rebuilt.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -122,12 +124,15 @@ SceneSpec gas_scene(double box, int n) {
   return scene;
 }
 
+class VerletListRun : public testing::TestWithParam<Backend> {};
+
 // After many list rebuilds, the forces are still those of every overlapping
-// pair: a contact the list had missed would show as its whole force.
-TEST(VerletList, ForcesMatchBruteForceAfterManyRebuilds) {
+// pair: a contact the list had missed (built wrong, or kept when stale) would
+// show as its whole force.
+TEST_P(VerletListRun, ForcesMatchBruteForceAfterManyRebuilds) {
   const double box = 0.0132;
   const SceneSpec scene = gas_scene(box, 216);
-  RunOptions options{Backend::cpu};
+  RunOptions options{GetParam()};
   options.verlet_skin = 0.02;  // rebuilt every few steps
   Simulation sim(scene, options);
   sim.run(3000);
@@ -155,10 +160,10 @@ TEST(VerletList, ForcesMatchBruteForceAfterManyRebuilds) {
   EXPECT_GT(touching, 5);
 }
 
-TEST(VerletList, NegativeOrNonFiniteSkinIsRefused) {
+TEST_P(VerletListRun, NegativeOrNonFiniteSkinIsRefused) {
   const SceneSpec scene = gas_scene(0.0132, 8);
   for (double skin : {-0.01, std::nan(""), std::numeric_limits<double>::infinity()}) {
-    RunOptions options{Backend::cpu};
+    RunOptions options{GetParam()};
     options.verlet_skin = skin;
     try {
       Simulation sim(scene, options);
@@ -171,8 +176,8 @@ TEST(VerletList, NegativeOrNonFiniteSkinIsRefused) {
 
 // Each particle's contacts are summed in ascending partner id, whatever the
 // list held when it was built: a frictional run is bitwise the same for any
-// skin and any memory re-sorting schedule.
-TEST(VerletList, ResultDoesNotDependOnTheRebuildSchedule) {
+// skin and any memory re-sorting schedule, on either backend.
+TEST_P(VerletListRun, ResultDoesNotDependOnTheRebuildSchedule) {
   SceneSpec scene = gas_scene(0.0132, 216);
   scene.gravity = {0, 0, -9.81};
   scene.effects = kFriction;
@@ -180,7 +185,7 @@ TEST(VerletList, ResultDoesNotDependOnTheRebuildSchedule) {
   scene.pairs[0].restitution = 0.5;
   std::vector<ParticleSnapshot> results;
   for (const auto& [skin, reorder] : {std::pair{0.02, 25}, std::pair{0.5, 7}, std::pair{0.1, 0}}) {
-    RunOptions options{Backend::cpu};
+    RunOptions options{GetParam()};
     options.verlet_skin = skin;
     options.reorder_interval = reorder;
     Simulation sim(scene, options);
@@ -196,6 +201,8 @@ TEST(VerletList, ResultDoesNotDependOnTheRebuildSchedule) {
           << "run " << r << ", particle " << i;
     }
 }
+
+INSTANTIATE_TEST_SUITE_P(Backends, VerletListRun, testing::ValuesIn(test_backends()), backend_label);
 
 }  // namespace
 }  // namespace gs::test

@@ -16,6 +16,10 @@ struct CpuExec {
   static constexpr bool cell_begins_by_particle = true;
   // Contacts from a Verlet list (neighbor/verlet_list.hpp says why).
   static constexpr bool verlet_list = true;
+  // A rank's one-step force computations (ghosts change every step) find the
+  // touching partners in the cells and sort them (TouchingInIdOrder): one
+  // walk of the cells, where a list would take a walk and a write.
+  static constexpr bool one_step_cell_scan = true;
 
   // Each thread calls its own copy of the functor: the compiler then knows
   // that no store through the functor's output pointers changes its fields,
