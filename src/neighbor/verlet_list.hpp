@@ -14,15 +14,17 @@
 // backend.
 //
 // Why on the GPU too: a dense bed's 27 cells hold about 31 candidates per
-// particle, of which a dozen are within reach; scanning them every step in
-// fp64 costs more than reading a short list of 4-byte indices (about six
-// entries per sphere in a packed bed at skin 0.1 diameters), and the list is
-// rebuilt only every few dozen steps. The GPU builds it in two passes over
-// the cells (count, then an exclusive scan of the counts, then fill and sort
-// each particle's entries in place: ListCountKernel, ListFillKernel); only
-// the total comes back to the host, to size the list. Its staleness is one
-// flag the device sets and the host reads after the step's kick-drift
-// (CudaExec::any).
+// particle, of which about six touch it; scanning them every step in fp64
+// costs more than reading a short list of 4-byte indices (six entries per
+// sphere in a touching lattice at skin 0.1 diameters), rebuilt only when a
+// particle has moved half the skin. Its memory: 4 bytes per entry, 4 per
+// particle of offsets and 24 of reference position (docs/PERFORMANCE.md).
+// The GPU builds it in two passes over the cells (count; a scan turns the
+// counts into offsets; fill and sort each particle's entries in place:
+// ListCountKernel, ListFillKernel); only the total comes back to the host,
+// to size the list. Its staleness is one flag the device sets and the host
+// reads after the step's kick-drift (CudaExec::any): one wait for the device
+// per step, a few microseconds against the milliseconds of a large bed's step.
 #include <cstdint>
 #include <vector>
 

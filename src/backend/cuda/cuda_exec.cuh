@@ -1,5 +1,6 @@
 #pragma once
 // CUDA execution policy: one thread per particle, CUB radix sort for keys.
+#include <stdexcept>
 #include <type_traits>
 
 #include <cub/device/device_radix_sort.cuh>
@@ -147,6 +148,8 @@ struct CudaExec {
     GS_CUDA_CHECK(cub::DeviceScan::InclusiveSum(v.scan_scratch.data(), bytes, begin + 1, begin + 1, n_owned));
     Index total = 0;
     GS_CUDA_CHECK(cudaMemcpy(&total, begin + n_owned, sizeof(Index), cudaMemcpyDeviceToHost));
+    // 2^31 entries and more wrap in 32-bit offsets (3.6e8 spheres of six neighbours each).
+    if (total < 0) throw std::runtime_error("the Verlet list would hold 2^31 entries or more");
     v.list.resize(std::size_t(total));
     parallel_for(n_owned, ListFillKernel{cells, near, id, begin, v.list.data()});
   }
