@@ -3,8 +3,10 @@
 # repository root of the branch:
 #   [OUT=dir] [BUDGET_S=540] bench/device_nlist.sh [BASE_SRC]
 # BASE_SRC (default: carry/base, else base_src): the source tree before the
-# change (the merge base: git archive <commit> | tar -x -C carry/base). Without
-# one, the benchmarks run this tree alone.
+# change, unpacked before the tree is copied to the GPU machine, e.g.
+#   mkdir -p carry/base && git archive $(git merge-base HEAD main) | tar -x -C carry/base
+# (carry/ is ignored by git: carry it). Without one, the benchmarks run this
+# tree against itself.
 # It builds both trees with CUDA side by side (the base: the command and
 # settle_bench only), then, each phase cut to what the budget leaves:
 #  1. the CPU-against-GPU comparison: the BackendAgreement test, the Verlet
