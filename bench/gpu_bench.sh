@@ -4,7 +4,8 @@
 # each line with particle-steps/s, device bytes per particle and contacts per
 # particle; a before/after table at the end.
 #   bench/gpu_bench.sh BEFORE_BUILD AFTER_BUILD OUTDIR [SECONDS] [SIZES]
-# BEFORE_BUILD, AFTER_BUILD: build directories holding src/grainstorm (and
+# BEFORE_BUILD, AFTER_BUILD: build directories, relative to the repository
+# root (run from there), holding src/grainstorm (and
 # bench/settle_bench). SECONDS (default 300): the whole script's budget; a run
 # that would start after it is skipped and said so. SIZES (default
 # "4000000 16000000 64000000"): the dense beds' particle counts, smallest
@@ -34,6 +35,7 @@ wanted() { [[ $skip != *" $1 "* ]]; }
 before=$1 after=$2 out=$3 budget=${4:-300} sizes=${5:-"4000000 16000000 64000000"}
 root=$(pwd)
 mkdir -p "$out"
+out=$(cd "$out" && pwd)  # the runs log there from their scenes' directories
 deadline=$((SECONDS + budget))
 csv=$out/gpu_bench.csv
 echo "bench,particles,build,round,particle_steps_per_s,bytes_per_particle,contacts_per_particle" > "$csv"
