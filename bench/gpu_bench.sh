@@ -27,7 +27,7 @@
 # slots (walls included) over particles at the end (the run's timeseries.csv).
 # BACKEND=cpu runs it all on the CPU instead (a dry run of the script);
 # SKIP="random mixer_b ..." leaves those benchmarks out; RANDOM_BED_N sets the
-# random bed's size (default 4e6).
+# random bed's size (default 2e6); ROUNDS the rounds per benchmark (default 1).
 set -uo pipefail
 backend=${BACKEND:-cuda}
 skip=" ${SKIP:-} "
@@ -39,6 +39,7 @@ out=$(cd "$out" && pwd)  # the runs log there from their scenes' directories
 deadline=$((SECONDS + budget))
 csv=$out/gpu_bench.csv
 echo "bench,particles,build,round,particle_steps_per_s,bytes_per_particle,contacts_per_particle" > "$csv"
+# particle_steps_per_s: of the step loop alone (step_rate_of, below).
 left() { echo $((deadline - SECONDS)); }
 
 # Contacts per particle at the run's end: the last row of its timeseries.csv
@@ -65,6 +66,22 @@ print(f"{float(m.group(1)) * scale / int(n.group(1)):.0f}")
 PY
 }
 
+# Particle-steps per second of the steps alone: particles x steps over the
+# time inside the step loop (the run log's phases: integration, neighbour
+# build, contact forces, exchange), not the set-up and the snapshots, which
+# dominate a run of a few hundred steps.
+step_rate_of() {
+  python3 - "$1" <<'PY'
+import re, sys
+t = open(sys.argv[1]).read()
+n = re.search(r"(\d+) particles, backend .* steps (\d+) to (\d+)", t)
+p = re.search(r"integration ([\d.]+), neighbour build ([\d.]+), contact forces ([\d.]+), exchange ([\d.]+)", t)
+if not (n and p) or "done:" not in t: sys.exit()
+seconds = sum(float(x) for x in p.groups())
+print(f"{int(n.group(1)) * (int(n.group(3)) - int(n.group(2))) / seconds:.3g}" if seconds > 0 else "")
+PY
+}
+
 # run_case BENCH BUILD ROUND DIR SCENE STEPS [grainstorm args...]: one timed
 # run in DIR (a scene's relative paths resolve there); one CSV line. LAUNCH
 # (e.g. "mpirun -np 2") is put before the command.
@@ -80,7 +97,7 @@ run_case() {
      --out "$run" "$@" > "$log" 2>&1)
   local rc=$?
   local rate n
-  rate=$(grep -oE "done: .* ([0-9.e+]+) particle-steps/s" "$log" | grep -oE "[0-9.e+]+ particle-steps" | cut -d' ' -f1)
+  rate=$(step_rate_of "$log")
   n=$(grep -oE "[0-9]+ particles, backend" "$log" | cut -d' ' -f1)
   [[ $rc == 0 && -n $rate ]] || { echo "FAILED $tag (exit $rc): $(tail -2 "$log" | tr '\n' ' ')"; rate=-; }
   echo "$bench,${n:--},$(basename "$build"),$round,$rate,$(bytes_of "$log"),$(contacts_of "$run")" | tee -a "$csv"
@@ -128,18 +145,20 @@ for n in $sizes; do
   dense_scene "$n" false > "$scenes/dense_nofric_$n.yaml"
 done
 
-# Dense beds: 200 steps (the list is built at the first and, in a static bed,
-# never again; the rate includes that build). All sizes but the largest
-# here, the largest after the other benchmarks: it is what the budget cuts.
+# Dense beds: 400 steps (the list is built at the first and, in a static bed,
+# never again; the rate includes that build), ROUNDS rounds (default 1). The
+# smallest size first, the largest last, after the other benchmarks: it is
+# what the budget cuts.
+rounds=$(seq 1 "${ROUNDS:-1}")
 dense_runs() {
   for n in "$@"; do
     wanted dense || break
-    for round in 1 2; do
+    for round in $rounds; do
       for b in "$before" "$after"; do
-        run_case dense "$b" $round "$root" "$scenes/dense_$n.yaml" 200
+        run_case dense "$b" $round "$root" "$scenes/dense_$n.yaml" 400
       done
     done
-    for b in "$before" "$after"; do run_case dense_nofric "$b" 1 "$root" "$scenes/dense_nofric_$n.yaml" 200; done
+    for b in "$before" "$after"; do run_case dense_nofric "$b" 1 "$root" "$scenes/dense_nofric_$n.yaml" 400; done
   done
 }
 read -r -a size_list <<< "$sizes"
@@ -167,13 +186,13 @@ settle_to_checkpoint() {
 # The step a checkpoint was written at, from its name.
 step_of() { local b; b=$(basename "$1" .h5); echo $((10#${b#checkpoint_})); }
 
-# The random polydisperse bed: 4e6 spheres filled at solid fraction 0.24 into
-# a 0.4 m x 0.4 m box, settled 0.3 s (the top ones fall 0.27 m, in 0.23 s:
+# The random polydisperse bed: 2e6 spheres filled at solid fraction 0.21 into
+# a 0.3 m x 0.3 m box, settled 0.3 s (the top ones fall 0.29 m, in 0.24 s:
 # most of the bed is at rest by then) to a checkpoint, then 300 steps timed
 # per build from it.
-random_n=${RANDOM_BED_N:-4000000}
+random_n=${RANDOM_BED_N:-2000000}
 cat > "$scenes/random.yaml" <<YAML
-domain: {min: [0, 0, 0], max: [0.4, 0.4, 0.45]}
+domain: {min: [0, 0, 0], max: [0.3, 0.3, 0.45]}
 gravity: [0, 0, -9.81]
 contact_model: linear
 precision: fp32
@@ -184,12 +203,12 @@ materials:
 pairs:
   - {materials: [glass, glass], stiffness_normal: 2000, restitution: 0.5, friction: 0.5}
 walls:
-  - box: {min: [0, 0, 0], max: [0.4, 0.4, 0.45]}
+  - box: {min: [0, 0, 0], max: [0.3, 0.3, 0.45]}
     material: glass
 particles:
   - random_fill:
       material: glass
-      region: {box: {min: [0.001, 0.001, 0.001], max: [0.399, 0.399, 0.449]}}
+      region: {box: {min: [0.001, 0.001, 0.001], max: [0.299, 0.299, 0.449]}}
       count: $random_n
       radius: {min: 0.0008, max: 0.0012}
       seed: 7
@@ -202,7 +221,7 @@ if wanted random && (($(left) > 120)); then
     $(($(left) > 150 ? 90 : $(left) - 60)))
   grep -E "particles,|set up|stopped|peak" "$out/random_settle.log"
   if [[ -n $checkpoint ]]; then
-    for round in 1 2; do
+    for round in $rounds; do
       for b in "$before" "$after"; do
         run_case random "$b" $round "$root" "$scenes/random.yaml" $(($(step_of "$checkpoint") + 300)) \
           --restart "$checkpoint"
@@ -225,7 +244,7 @@ if wanted mixer_b && (($(left) > 90)); then
     $(($(left) > 120 ? 60 : $(left) - 60)))
   grep -E "particles,|stopped|peak" "$out/mixer_b_settle.log"
   if [[ -n $checkpoint ]]; then
-    for round in 1 2; do
+    for round in $rounds; do
       for b in "$before" "$after"; do
         run_case mixer_b "$b" $round cases/mixer .gpu_bench_b.yaml $(($(step_of "$checkpoint") + 5000)) \
           --restart "$checkpoint"
@@ -241,7 +260,7 @@ fi
 # Mixer case a from its start: the small scene (7,680 spheres).
 sed -e 's/fields: \[id, material, marker, radius, position, velocity\]/fields: [id]/' \
   cases/mixer/case_a.yaml > cases/mixer/.gpu_bench_a.yaml
-for round in 1 2; do
+for round in $rounds; do
   wanted mixer_a || break
   for b in "$before" "$after"; do run_case mixer_a "$b" $round cases/mixer .gpu_bench_a.yaml 20000; done
 done
