@@ -12,7 +12,7 @@
 //   settle_bench [--n N] [--steps S] [--backend cpu|cuda] [--precision fp32|fp64|fp32_full]
 //                [--effects none|friction|rolling|cohesion] [--model linear|hertz]
 //                [--mesh impeller]   (the seed's impeller turning at 30 rpm in the bed)
-//                [--skin S]          (CPU Verlet list skin in largest diameters, default 0.1)
+//                [--skin S]          (Verlet list skin in largest diameters, default 0.1)
 //                [--digest yes]      (then print the final state's digest: the same for any build
 //                                     that computes the same bits)
 #include <chrono>

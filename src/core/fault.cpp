@@ -10,7 +10,6 @@ const char* fault_cause(int code) {
                                "unstable contact)";
     case kFaultNotFinite: return "position or velocity became NaN or Inf (numerical instability)";
     case kFaultSlotsExhausted: return "more simultaneous contacts than contact_slots (raise contact_slots)";
-    case kFaultTooManyTouching: return "more than 128 particles touch this one (CPU ranks support at most 128)";
     default: return "unknown fault";
   }
 }

@@ -12,7 +12,6 @@ enum FaultCode : int {
   kFaultTooFast = 2,          // a particle moved more than half a cell in one step
   kFaultNotFinite = 3,        // NaN or Inf in position or velocity
   kFaultSlotsExhausted = 4,   // more simultaneous contacts than contact_slots
-  kFaultTooManyTouching = 5,  // more particles touching one than the CPU's per-step search holds
 };
 
 struct Fault {

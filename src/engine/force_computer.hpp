@@ -83,17 +83,14 @@ class ForceComputer final : public ForceComputation {
 
  private:
   // Calls f with the contact partners the force computation visits: the
-  // Verlet list while it is valid, else the cells (in id order on a CPU).
+  // Verlet list, which the step loop keeps valid (every rank rebuilds it
+  // after each rebuild of its halo), or the cells where the backend keeps no
+  // list.
   template <class F>
-  void with_candidates(ParticleStore& s, long long step, F&& f) {
+  void with_candidates(ParticleStore& s, long long /*step*/, F&& f) {
     if constexpr (Exec::verlet_list) {
-      if (neighbours_.list_valid(s)) {
-        f(neighbours_.list_candidates());
-      } else {
-        // NeighbourSearch::build_for_one_step: the cells of the whole store.
-        f(TouchingInIdOrder{neighbours_.cell_candidates(s), s.position.data(), s.radius.data(), s.id.data(),
-                            st_.fault.data(), step});
-      }
+      if (!neighbours_.list_valid(s)) throw std::logic_error("forces before the Verlet list was built");
+      f(neighbours_.list_candidates());
     } else {
       f(neighbours_.cell_candidates(s));
     }

@@ -1,6 +1,6 @@
 #pragma once
 // NeighbourSearch over an execution policy: the cell list, and the Verlet
-// list where the policy keeps one (Exec::verlet_list, the CPU).
+// list where the policy keeps one (Exec::verlet_list: both backends).
 #include <stdexcept>
 
 #include "engine/neighbour_search.hpp"
@@ -28,7 +28,6 @@ class NeighbourFinder final : public NeighbourSearch {
       built_at_ = s.revision;
     }
   }
-  void build_for_one_step(const ParticleStore& s, const CellGrid& grid) override { build_cell_list(s, grid); }
   bool stale(const ParticleStore& s) const override {
     if constexpr (Exec::verlet_list)
       return !list_valid(s) || verlet_list_stale<Exec>(verlet_, s.position.data(), s.n_owned, s.size());

@@ -1,7 +1,6 @@
 #pragma once
-// Who may touch whom: the cell list (every backend) and, where the backend
-// keeps one (the CPU), a Verlet list of the particles within reach plus a
-// skin. The force computation of the same run reads what this part built.
+// Who may touch whom: the cell list and a Verlet list of the particles
+// within reach plus a skin (both backends). The force computation of the same run reads what this part built.
 #include <cstddef>
 
 #include "engine/particle_store.hpp"
@@ -24,11 +23,6 @@ class NeighbourSearch {
   // What the force computation needs to find contacts: the cell list, and
   // with a Verlet list the list too, of particles within r_i + r_j + skin.
   virtual void build(const ParticleStore& s, const CellGrid& grid, double skin) = 0;
-  // The same for one force computation only (ranks, whose ghosts change every
-  // step): the cell list alone; with a Verlet list the force kernel then finds
-  // each particle's touching partners in the cells and sums them in ascending
-  // id, which is the list's order, without writing a list used once.
-  virtual void build_for_one_step(const ParticleStore& s, const CellGrid& grid) = 0;
   // Whether build() must run before the next force computation: always
   // without a Verlet list; with one, when the store has changed since the
   // build (ParticleStore::revision) or a particle has moved more than half

@@ -1,5 +1,5 @@
 #pragma once
-// Verlet list of the CPU backend: for each owned particle, the particles
+// Verlet list, on every backend: for each owned particle, the particles
 // within r_i + r_j + skin when the list was built, found through the cell
 // list (whose cells are then at least a largest diameter plus the skin) and
 // kept in ascending id. It stays valid until some particle has moved more
@@ -8,15 +8,24 @@
 //
 // Why ascending id: a particle's contact forces are summed in its list's
 // order, so that order must not depend on when the list was built (a rank
-// with ghosts rebuilds it every step, a single rank only when it must), nor
+// rebuilds it with its halo, when a particle on any rank has moved half the
+// skin; a single rank when one of its own has), nor
 // on where the particles were then. Ordered by the partners' global ids, the
-// sum is the same for any build schedule and any number of ranks.
+// sum is the same for any build schedule, any number of ranks and either
+// backend.
 //
-// Why only the CPU: a core scanning 27 cells per particle and step spends
-// most of its time on candidates out of reach; the list holds only the near
-// ones and skips the per-step sort. A GPU hides that scan's
-// latency behind other warps, and the list (4 bytes per neighbour plus a
-// reference position) would not fit its 400-byte-per-particle budget.
+// Why on the GPU too: a dense bed's 27 cells hold about 31 candidates per
+// particle, of which about six touch it; scanning them every step in fp64
+// costs more than reading a short list of 4-byte indices (six entries per
+// sphere in a touching lattice at skin 0.1 diameters), rebuilt only when a
+// particle has moved half the skin. Its memory: 4 bytes per entry, 4 per
+// particle of offsets and 24 of reference position (docs/PERFORMANCE.md).
+// The GPU builds it in two passes over the cells (count; a scan turns the
+// counts into offsets; fill and sort each particle's entries in place:
+// ListCountKernel, ListFillKernel); only the total comes back to the host,
+// to size the list. Its staleness is one flag the device sets and the host
+// reads after the step's kick-drift (CudaExec::any): one wait for the device
+// per step, a few microseconds against the milliseconds of a large bed's step.
 #include <cstdint>
 #include <vector>
 
@@ -39,18 +48,19 @@ struct ListCandidates {
 };
 
 struct VerletList {
-  explicit VerletList(Backend b) : begin(b), list(b), reference(b) {}
+  explicit VerletList(Backend b) : begin(b), list(b), reference(b), scan_scratch(b) {}
 
   DeviceArray<Index> begin, list;
   DeviceArray<Vec3d> reference;  // owned particles' positions at the build
   PeriodicBox box;               // the grid's at the build: moves are measured to the nearest image
-  std::vector<std::vector<Index>> parts;  // per thread, while building
+  std::vector<std::vector<Index>> parts;  // per thread, while building (CPU)
+  DeviceArray<unsigned char> scan_scratch;  // the count scan's (GPU), sized at its first use
   double skin = 0;
   Index n_owned = 0, n_total = 0;  // the store's layout at the build
   bool valid = false;
 
   ListCandidates candidates() const { return {begin.data(), list.data()}; }
-  std::size_t bytes() const { return begin.bytes() + list.bytes() + reference.bytes(); }
+  std::size_t bytes() const { return begin.bytes() + list.bytes() + reference.bytes() + scan_scratch.bytes(); }
 };
 
 // Whether j (not i) lies within r_i + r_j + skin of x_i (its nearest image).
@@ -77,39 +87,6 @@ GS_HD GS_INLINE void sort_by_id(Index* out, Index n, const ParticleId* id) {
   }
 }
 
-// Contact candidates of particle i found anew in the cells: the particles
-// touching it, visited in ascending id, which is the order in which the
-// Verlet list's walk meets its touching entries (the others add nothing), so
-// the sums are the list's bit for bit. For ranks, whose ghosts change every
-// step: scanning the cells once costs less than writing a list used once.
-struct TouchingInIdOrder {
-  static constexpr int kMaxTouching = 128;  // more is reported as a fault
-  CellCandidates cells;
-  const Vec3d* position;
-  const float* radius;
-  const ParticleId* id;
-  Fault* fault;
-  long long step;
-
-  template <class Visit>
-  GS_HD GS_INLINE void for_each(Index i, const Vec3d& xi, Visit& visit) const {
-    Index touching[kMaxTouching];
-    Index n = 0;
-    bool overflow = false;
-    auto collect = [&](Index j) {
-      if (j == i) return;
-      const double reach = double(radius[i]) + double(radius[j]);
-      if (!(norm2(cells.grid.box.separation(xi, position[j])) < reach * reach)) return;
-      if (n < kMaxTouching) touching[n++] = j;
-      else overflow = true;
-    };
-    cells.for_each(i, xi, collect);
-    if (overflow) report_fault(fault, kFaultTooManyTouching, id[i], step);
-    sort_by_id(touching, n, id);
-    for (Index k = 0; k < n; ++k) visit(touching[k]);
-  }
-};
-
 // Whether owned particle i has moved more than `limit` since the build (a
 // particle wrapped across a periodic face has moved by its nearest image).
 struct MovedBeyond {
@@ -120,13 +97,48 @@ struct MovedBeyond {
   GS_HD bool operator()(Index i) const { return norm2(box.separation(position[i], reference[i])) > limit * limit; }
 };
 
+// Counts particle i's neighbours into count[i + 1] (count[0] = 0): the GPU's
+// first pass, before the scan that turns the counts into offsets.
+struct ListCountKernel {
+  CellCandidates cells;
+  WithinSkin near;
+  Index* count;
+  GS_HD void operator()(Index i) const {
+    const Vec3d xi = near.position[i];
+    Index n = 0;
+    auto tally = [&](Index j) { n += near(i, j, xi) ? 1 : 0; };
+    cells.for_each(i, xi, tally);
+    count[i + 1] = n;
+    if (i == 0) count[0] = 0;
+  }
+};
+
+// Writes particle i's neighbours to list[begin[i], begin[i + 1]) and orders
+// them by ascending id: the GPU's second pass, over the same cells.
+struct ListFillKernel {
+  CellCandidates cells;
+  WithinSkin near;
+  const ParticleId* id;
+  const Index* begin;
+  Index* list;
+  GS_HD void operator()(Index i) const {
+    const Vec3d xi = near.position[i];
+    Index* out = list + begin[i];
+    Index n = 0;
+    auto append = [&](Index j) {
+      if (near(i, j, xi)) out[n++] = j;
+    };
+    cells.for_each(i, xi, append);
+    sort_by_id(out, n, id);
+  }
+};
+
 // Builds the list of the n_owned first particles against all n_total of the
 // cell list `cells` (owned and ghosts). Exec::fill_verlet_list finds the
-// neighbours; the list lives in host memory (the CPU backend only).
+// neighbours, in the backend's memory.
 template <class Exec>
 void build_verlet_list(VerletList& v, const CellList& cells, const Vec3d* position, const float* radius,
                        const ParticleId* id, Index n_owned, Index n_total, double skin) {
-  static_assert(Exec::backend == Backend::cpu, "the Verlet list lives in host memory");
   Exec::fill_verlet_list(v, CellCandidates{cells.grid, cells.sorted.data(), cells.cell_begin.data()},
                          WithinSkin{position, radius, skin, cells.grid.box}, id, n_owned);
   v.reference.resize(std::size_t(n_owned));

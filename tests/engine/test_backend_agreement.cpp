@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "contact/contact_time.hpp"
@@ -76,18 +77,14 @@ int touching(const ParticleSnapshot& s) {
 
 TEST(BackendAgreement, CpuAndCudaTrajectoriesAgree) {
   if (!cuda_device_available()) GTEST_SKIP() << "no CUDA device";
-  // The backends differ only in rounding: the order of a particle's sums (cell by
-  // cell on the GPU, by id from the CPU's Verlet list) and the multiply-adds nvcc
-  // fuses beyond those the source fuses (mul_add). Measured on an H100
-  // (2026-11-25): bitwise equal for the first 30 steps, then the difference grows
-  // about 2x per 100 steps, to 7e-11 m at step 500 in fp32 (2e-17 m in fp64);
-  // between steps 800 and 900 one discrete event (a contact starting or a spring
-  // reaching its cap one step apart) lifts the fp32 difference to 1e-7 m, 2.4e-7 m
-  // at step 1000 (3e-16 m in fp64). Bounds: at step 500, 1e-5 R in fp32 and 1e-12
-  // R in fp64 (130 and 45 times the measurement); at step 1000, after such events,
-  // 1e-3 R in fp32 (4 times) and 1e-9 R in fp64. A backend bug (a contact missed
-  // or counted twice in one step: a kick of k delta dt / m ~ 1e-2 m/s) moves
-  // spheres by ~1e-5 m.
+  // The backends differ only in rounding: the multiply-adds nvcc fuses beyond those the source fuses (mul_add); both
+  // sum a particle's contacts in ascending partner id (their Verlet lists). Measured on an H100 (2026-11-25, when
+  // the GPU still summed cell by cell): bitwise equal for the first 30 steps, then the difference grows about 2x per
+  // 100 steps, to 7e-11 m at step 500 in fp32 (2e-17 m in fp64); between steps 800 and 900 one discrete event (a
+  // contact starting or a spring reaching its cap one step apart) lifts the fp32 difference to 1e-7 m, 2.4e-7 m at
+  // step 1000 (3e-16 m in fp64). Bounds: at step 500, 1e-5 R in fp32 and 1e-12 R in fp64 (130 and 45 times the
+  // measurement); at step 1000, after such events, 1e-3 R in fp32 (4 times) and 1e-9 R in fp64. A backend bug (a
+  // contact missed or counted twice in one step: a kick of k delta dt / m ~ 1e-2 m/s) moves spheres by ~1e-5 m.
   struct Bounds {
     Precision precision;
     double at_500, at_1000;
@@ -102,7 +99,10 @@ TEST(BackendAgreement, CpuAndCudaTrajectoriesAgree) {
       cuda.run(500);
       const ParticleSnapshot on_cpu = cpu.snapshot(), on_cuda = cuda.snapshot();
       ASSERT_EQ(on_cpu.id, on_cuda.id);
-      EXPECT_LT(largest_deviation(on_cpu, on_cuda), bound) << "at step " << cpu.step_count();
+      const double deviation = largest_deviation(on_cpu, on_cuda);
+      std::printf("%s, step %lld: largest CPU-GPU distance %.3g m\n", precision_name(b.precision), cpu.step_count(),
+                  deviation);  // the measurement the bounds are set from
+      EXPECT_LT(deviation, bound) << "at step " << cpu.step_count();
       if (bound == b.at_1000) {
         EXPECT_GT(moved(scene, on_cpu), int(on_cpu.size()) / 2);
         EXPECT_GT(touching(on_cpu), int(on_cpu.size()) / 2);

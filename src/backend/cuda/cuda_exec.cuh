@@ -1,8 +1,10 @@
 #pragma once
 // CUDA execution policy: one thread per particle, CUB radix sort for keys.
+#include <stdexcept>
 #include <type_traits>
 
 #include <cub/device/device_radix_sort.cuh>
+#include <cub/device/device_scan.cuh>
 #include <cub/device/device_select.cuh>
 #include <thrust/iterator/counting_iterator.h>
 
@@ -10,6 +12,7 @@
 #include "backend/device_array.hpp"
 #include "core/history_layout.hpp"
 #include "neighbor/cell_list.hpp"
+#include "neighbor/verlet_list.hpp"
 
 namespace gs {
 
@@ -29,6 +32,25 @@ __global__ void __launch_bounds__(kCudaBlock, MinBlocks) for_each_kernel_bounded
   if (i < n) f(i);
 }
 
+// Sets *flag where pred(i) holds for some i in [0, n) (never clears it).
+template <class P>
+__global__ void any_kernel(Index n, P pred, int* flag) {
+  const Index i = Index(blockIdx.x) * Index(blockDim.x) + Index(threadIdx.x);
+  if (i < n && pred(i)) *flag = 1;
+}
+
+// One int in pinned host memory that kernels write directly: a yes/no
+// answer comes back without a copy, at the cost of the wait for the kernel.
+// One per process (a rank drives one device), allocated at its first use.
+inline int* mapped_flag() {
+  static int* flag = [] {
+    void* p = nullptr;
+    GS_CUDA_CHECK(cudaHostAlloc(&p, sizeof(int), cudaHostAllocMapped));
+    return static_cast<int*>(p);
+  }();
+  return flag;
+}
+
 template <class F, class = void>
 struct MinBlocksPerSM {
   static constexpr int value = 0;
@@ -45,8 +67,8 @@ struct CudaExec {
   static constexpr HistoryOrder history_order = HistoryOrder::slot_major;
   // Cell offsets one thread per cell, so no thread walks a long empty stretch.
   static constexpr bool cell_begins_by_particle = false;
-  // Contacts from the 27 cells every step (neighbor/verlet_list.hpp says why).
-  static constexpr bool verlet_list = false;
+  // Contacts from a Verlet list (neighbor/verlet_list.hpp says why).
+  static constexpr bool verlet_list = true;
 
   template <class F>
   static void parallel_for(Index n, const F& f) {
@@ -86,6 +108,47 @@ struct CudaExec {
     Index m = 0;
     GS_CUDA_CHECK(cudaMemcpy(&m, count, sizeof(Index), cudaMemcpyDeviceToHost));
     return m;
+  }
+
+  // Whether pred(i) holds for some i in [0, n): one kernel, then a wait for
+  // it; the answer is read from pinned memory the kernel wrote.
+  template <class P>
+  static bool any(Index n, const P& pred) {
+    if (n <= 0) return false;
+    volatile int* flag = mapped_flag();
+    *flag = 0;
+    int* device_flag = nullptr;
+    GS_CUDA_CHECK(cudaHostGetDevicePointer(reinterpret_cast<void**>(&device_flag), const_cast<int*>(flag), 0));
+    any_kernel<<<unsigned((n + kBlock - 1) / kBlock), kBlock>>>(n, pred, device_flag);
+    GS_CUDA_CHECK(cudaGetLastError());
+    GS_CUDA_CHECK(cudaDeviceSynchronize());
+    return *flag != 0;
+  }
+
+  // Fills v.begin and v.list: the neighbours of particles [0, n_owned) among
+  // `cells`, each particle's in ascending id. Two passes over the cells
+  // (count, fill) around an in-place inclusive scan of the counts; the total
+  // comes back to the host to size the list.
+  static void fill_verlet_list(VerletList& v, const CellCandidates& cells, const WithinSkin& near,
+                               const ParticleId* id, Index n_owned) {
+    v.begin.resize(std::size_t(n_owned) + 1);
+    Index* begin = v.begin.data();
+    if (n_owned == 0) {
+      GS_CUDA_CHECK(cudaMemset(begin, 0, sizeof(Index)));
+      v.list.resize(0);
+      return;
+    }
+    parallel_for(n_owned, ListCountKernel{cells, near, begin});
+    std::size_t bytes = 0;
+    GS_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, bytes, begin + 1, begin + 1, n_owned));
+    v.scan_scratch.resize(bytes);
+    GS_CUDA_CHECK(cub::DeviceScan::InclusiveSum(v.scan_scratch.data(), bytes, begin + 1, begin + 1, n_owned));
+    Index total = 0;
+    GS_CUDA_CHECK(cudaMemcpy(&total, begin + n_owned, sizeof(Index), cudaMemcpyDeviceToHost));
+    // 2^31 entries and more wrap in 32-bit offsets (3.6e8 spheres of six neighbours each).
+    if (total < 0) throw std::runtime_error("the Verlet list would hold 2^31 entries or more");
+    v.list.resize(std::size_t(total));
+    parallel_for(n_owned, ListFillKernel{cells, near, id, begin, v.list.data()});
   }
 
   static void synchronize() { GS_CUDA_CHECK(cudaDeviceSynchronize()); }
