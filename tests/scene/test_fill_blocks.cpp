@@ -5,9 +5,12 @@
 
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <string>
 
 #include "scene/fill_blocks.hpp"
 #include "scene/particle_sources.hpp"
+#include "scene/scene_loader.hpp"
 
 namespace gs {
 namespace {
@@ -155,6 +158,23 @@ TEST(FillBlocks, TooFullBlockNamesTheFill) {
   } catch (const GenerateError& e) {
     EXPECT_EQ(e.set_first, 7u);
     EXPECT_NE(std::string(e.what()).find("too full"), std::string::npos) << e.what();
+  }
+}
+
+// The shipped scenes with a fill still get every particle they ask for (the
+// loader generates them all for its checks), with consecutive ids and no overlap.
+TEST(FillBlocks, ShippedFillScenesGetTheirCount) {
+  const std::string here = __FILE__;
+  const std::string root = here.substr(0, here.rfind("tests/scene/"));
+  for (const auto& [path, count] : {std::pair<std::string, std::size_t>{"cases/demo/settle.yaml", 2000},
+                                    {"cases/mixer/case_a.yaml", 7680}, {"cases/mixer/case_b.yaml", 76800}}) {
+    if (!std::ifstream(root + path)) GTEST_SKIP() << "no " << root + path;
+    const SceneSpec s = load_scene(root + path);
+    const std::vector<ParticleInit> all = all_particles(s);
+    ASSERT_EQ(all.size(), count) << path;
+    for (std::size_t i = 0; i < all.size(); ++i) ASSERT_EQ(all[i].id, i) << path;
+    std::size_t a = 0, b = 0;
+    EXPECT_FALSE(find_overlap(all, a, b, 0.0)) << path << ": " << a << " overlaps " << b;
   }
 }
 
