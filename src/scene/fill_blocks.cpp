@@ -58,23 +58,34 @@ bool inside(const Vec3d& p, const Vec3d& lo, const Vec3d& hi) {
 
 // Volume of the centres block b may give a largest sphere: its centre box
 // within the region shrunk by the largest radius. Whole when all eight
-// corners are in (both shapes are convex), else a midpoint rule on 32^3 points.
+// corners are in (both shapes are convex), else a midpoint rule on 32^3 points
+// of the box clipped to the shrunk region's bounds.
 double usable_volume(const RandomFillSpec& s, const FillBlocks& blocks, std::size_t b, double r) {
-  Vec3d lo, hi;
+  Vec3d lo, hi, fit_lo, fit_hi;
   centre_box(blocks, b, r, lo, hi);
-  if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) return 0;
+  // Within the bounds of the centres that fit: exact for a box region, and a
+  // region barely thicker than a sphere is not missed between the points.
+  region_bounds(shrunk(s.region, r), fit_lo, fit_hi);
+  for (int a = 0; a < 3; ++a) {
+    axis(lo, a) = std::max(axis(lo, a), axis(fit_lo, a));
+    axis(hi, a) = std::min(axis(hi, a), axis(fit_hi, a));
+  }
+  if (!(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) return 0;
   const Vec3d d = hi - lo;
+  // A region exactly one sphere thick along an axis (every block alike) is
+  // measured across the others.
+  const double measure = (d.x > 0 ? d.x : 1) * (d.y > 0 ? d.y : 1) * (d.z > 0 ? d.z : 1);
   bool all = true;
   for (int c = 0; c < 8 && all; ++c)
     all = admits(s.region, Vec3d(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z), r);
-  if (all) return d.x * d.y * d.z;
+  if (all) return measure;
   constexpr int k = 32;
   long in = 0;
   for (int z = 0; z < k; ++z)
     for (int y = 0; y < k; ++y)
       for (int x = 0; x < k; ++x)
         in += admits(s.region, lo + Vec3d(d.x * (x + 0.5) / k, d.y * (y + 0.5) / k, d.z * (z + 0.5) / k), r);
-  return d.x * d.y * d.z * double(in) / (k * k * k);
+  return measure * double(in) / (k * k * k);
 }
 
 // nx × ny × nz: blocks at least kFillBlockDiameters wide, and no more of them
