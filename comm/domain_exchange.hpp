@@ -12,6 +12,7 @@
 #include "decomposition/decomposition.hpp"
 #include "engine/particle_router.hpp"
 #include "engine/rank_exchange.hpp"
+#include "decomposition/owned_bounds.hpp"
 #include "scene/scene.hpp"
 
 namespace gs {
@@ -27,6 +28,7 @@ class DomainExchange final : public RankExchange {
   int rank() const override { return transport_.rank(); }
   int ranks() const override { return transport_.size(); }
   bool owns(const Vec3d& x) const override { return decomposition_->owner(x) == rank(); }
+  void owned_bounds(Vec3d& lo, Vec3d& hi) const override { gs::owned_bounds(*decomposition_, rank(), lo, hi); }
   void migrate(ParticleStore& s, ParticleMovement& k) override;
   void refresh_ghosts(ParticleStore& s, ParticleMovement& k) override;
   double set_skin(double skin) override;

@@ -29,6 +29,8 @@ class RankExchange {
   virtual int rank() const = 0;
   virtual int ranks() const = 0;
   virtual bool owns(const Vec3d& x) const = 0;
+  // A box holding every point of the domain this rank owns.
+  virtual void owned_bounds(Vec3d& lo, Vec3d& hi) const = 0;
 
   // Owned particles that left this rank's region go, with their contact
   // history, to their new owners; arrivals are appended. Drops the ghosts.

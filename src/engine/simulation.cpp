@@ -44,8 +44,12 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
   const auto t0 = Clock::now();
   RankExchange* split = exchange_.get();
   std::function<bool(const Vec3d&)> keep;  // empty: every particle (one rank)
-  if (split) keep = [split](const Vec3d& x) { return split->owns(x); };
-  upload(scene, keep);
+  KeepWindow window{Vec3d(-INFINITY, -INFINITY, -INFINITY), Vec3d(INFINITY, INFINITY, INFINITY)};
+  if (split) {
+    keep = [split](const Vec3d& x) { return split->owns(x); };
+    split->owned_bounds(window.lo, window.hi);  // random-fill blocks elsewhere are never made
+  }
+  upload(scene, keep, window);
   if (exchange_) exchange_->refresh_ghosts(store_, kernels_->movement());
   kernels_->synchronize();
   setup_timings_.particles = seconds_since(t0);
@@ -148,12 +152,13 @@ void Simulation::restore(const RestartState& r) {
 // the store's fields (filled on every thread, no list of particles between),
 // a block at a time, each uploaded to its place before the next is made: the
 // host holds one block, not the rank's particles.
-void Simulation::upload(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep) {
+void Simulation::upload(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep,
+                        const KeepWindow& window) {
   constexpr std::size_t kBlock = std::size_t(1) << 22;
   ParticleRecords host;
   const bool fp32 = fp32_state(scene_.precision);  // positions and velocities start on the fp32 grid they live on
   for_each_selected_block(
-      scene, keep, kBlock,
+      scene, keep, window, kBlock,
       [&](std::size_t n) {
         store_.resize_arrays(n);
         store_.n_owned = Index(n);

@@ -17,6 +17,8 @@
 
 namespace gs {
 
+struct KeepWindow;  // scene/particle_sources.hpp
+
 // A run stopped by a physical or numerical fault: names step, particle, cause.
 struct SimulationFault : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -102,7 +104,7 @@ class Simulation {
 
  private:
   void set_up(const SceneSpec& scene);
-  void upload(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep);
+  void upload(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep, const KeepWindow& window);
   void restore(const RestartState& restart);
   void move_walls(double t);
   void pose_meshes(double t);

@@ -13,60 +13,6 @@ namespace gs {
 
 namespace {
 
-double sphere_volume(double r) { return 4.0 / 3.0 * M_PI * r * r * r; }
-
-// Random sequential addition cannot pass random close packing; a request above
-// it fails at once instead of after millions of futile trials.
-constexpr double kMaxFillFraction = 0.64;
-
-[[noreturn]] void too_full(std::size_t placed, std::size_t count, double fraction, const char* why) {
-  std::ostringstream msg;
-  msg << "the region is too full for the requested count: " << why << " (placed " << placed << " of "
-      << count << " particles, requested solid fraction " << fraction
-      << "); use a bigger region or fewer or smaller particles";
-  throw GenerateError(msg.str());
-}
-
-
-// The two grids of a fill: exact overlap queries, and a fine bitmap of space
-// no further centre can use, which rejects most doomed trials for one bit.
-struct FillGrids {
-  SphereGrid spheres;
-  TakenCells taken;
-  double r_min;  // smallest radius still to come: what a taken cell must refuse
-
-  void insert(const Vec3d& c, double r) {
-    spheres.insert(c, r);
-    taken.take_ball(c, r + r_min);
-  }
-
-  // Spheres of earlier sets that reach into the box [lo, hi] are obstacles.
-  void add_obstacles(const EarlierSpheres& earlier, const Vec3d& lo, const Vec3d& hi) {
-    earlier([&](const ParticleInit& p) {
-      const Vec3d& c = p.position;
-      const double r = p.radius;
-      if (c.x + r > lo.x && c.x - r < hi.x && c.y + r > lo.y && c.y - r < hi.y && c.z + r > lo.z && c.z - r < hi.z)
-        insert(c, r);
-    });
-  }
-};
-
-// Cheap bitmap rejections allowed per overlap query before giving up: a fill
-// close to jamming may reject many trials that way, but must still end.
-constexpr long kDrawsPerAttempt = 200;
-
-// Draws centres for a sphere of radius r until one is free; false after
-// `max_attempts` overlap queries (or as many draws as that allows).
-bool place(const FillRegion& reg, FillGrids& g, double r, int max_attempts, std::mt19937_64& rng, Vec3d& c) {
-  int attempts = 0;
-  for (long draws = 0; draws < kDrawsPerAttempt * max_attempts && attempts < max_attempts; ++draws) {
-    if (!g.taken.sample(rng, c) || !admits(reg, c, r)) continue;
-    ++attempts;
-    if (g.spheres.overlapping(c, r, 0.0) < 0) return true;
-  }
-  return false;
-}
-
 constexpr std::size_t kMaxFillCount = 200000000;
 
 }  // namespace
@@ -161,55 +107,6 @@ std::vector<double> random_fill_radii(const SizeSpec& size, std::size_t count, s
   // Largest first: big spheres are the hard ones to fit once small ones are in.
   std::sort(radii.begin(), radii.end(), std::greater<double>());
   return radii;
-}
-
-void generate_random_fill(const RandomFillSpec& s, std::vector<ParticleInit>& out) {
-  // The earlier spheres are visited before any is appended, so `out` is stable meanwhile.
-  const std::size_t first_id = out.size();
-  const EarlierSpheres earlier = [&out, first_id](const SphereVisitor& visit) {
-    for (std::size_t i = 0; i < first_id; ++i) visit(out[i]);
-  };
-  generate_random_fill(s, earlier, first_id, out);
-}
-
-void generate_random_fill(const RandomFillSpec& s, const EarlierSpheres& earlier, std::size_t first_id,
-                          std::vector<ParticleInit>& out) {
-  check_id_room(first_id, s.count);
-  if (s.count == 0) return;
-  // The grids index their entries with 32-bit integers.
-  if (s.count > kMaxFillCount)
-    throw GenerateError("a random fill places at most " + std::to_string(kMaxFillCount) + " particles; split it");
-  const std::vector<double> radii = random_fill_radii(s.size, s.count, s.seed);
-  const double r_min = radii.back();
-  if (!fits(s.region, radii.front()))
-    throw GenerateError("the region is smaller than one particle of radius " + std::to_string(radii.front()));
-  double solid = 0, mean_r = 0;
-  for (double r : radii) {
-    solid += sphere_volume(r);
-    mean_r += r / double(s.count);
-  }
-  const double fraction = solid / region_volume(s.region);
-  if (fraction > kMaxFillFraction) too_full(0, s.count, fraction, "denser than random close packing");
-
-  // Trials are drawn in the box of the centres of the smallest spheres.
-  Vec3d lo, hi, centre_lo, centre_hi;
-  region_bounds(s.region, lo, hi);
-  region_bounds(shrunk(s.region, r_min), centre_lo, centre_hi);
-  // Overlap cells of one mean diameter were fastest in trials; taken cells of
-  // r_min / 2 let a sphere's exclusion ball cover whole cells (8 bytes per particle at most).
-  FillGrids g{SphereGrid(lo, hi, 2 * mean_r, s.count),
-              TakenCells(centre_lo, centre_hi, 0.5 * r_min, 64.0 * double(s.count) + 65536.0), r_min};
-  g.add_obstacles(earlier, lo, hi);
-
-  std::mt19937_64 rng(s.seed);
-  out.reserve(out.size() + s.count);
-  for (std::size_t i = 0; i < s.count; ++i) {
-    Vec3d c;
-    if (!place(s.region, g, radii[i], s.max_attempts, rng, c))
-      too_full(i, s.count, fraction, "no free spot found for a particle");
-    g.insert(c, radii[i]);
-    out.push_back(make_particle(s.tmpl, first_id + i, c, radii[i]));
-  }
 }
 
 bool find_overlap(const std::vector<ParticleInit>& ps, std::size_t& first, std::size_t& second, double tol) {

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <functional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "scene/fill_region.hpp"
@@ -14,6 +15,11 @@ namespace gs {
 // scene loader adds the file, line and key to the message.
 struct GenerateError : std::runtime_error {
   using std::runtime_error::runtime_error;
+  GenerateError(const std::string& what, std::size_t set_first) : std::runtime_error(what), set_first(set_first) {}
+  // Index of the first particle of the set that failed, when known (the
+  // loader names that set's line); kUnknown otherwise.
+  static constexpr std::size_t kUnknown = std::size_t(-1);
+  std::size_t set_first = kUnknown;
 };
 
 // Number of lattice sites along one axis of [lo, hi] (0 when hi < lo), and
@@ -31,25 +37,17 @@ ParticleInit make_particle(const ParticleTemplate& t, std::size_t id, const Vec3
 // exceed the particle ids.
 void check_id_room(std::size_t existing, std::size_t count);
 
-struct RandomFillSpec {
-  ParticleTemplate tmpl;
-  FillRegion region;
-  std::size_t count = 0;
-  SizeSpec size;
-  std::uint64_t seed = 0;
-  int max_attempts = 5000;  // overlap tests per particle before giving up
-};
 
 // Radii of a random fill, largest first. A class distribution is split by the
 // largest-remainder method, so each class gets round(fraction * count) particles.
 std::vector<double> random_fill_radii(const SizeSpec& size, std::size_t count, std::uint64_t seed);
 
-// Appends `count` spheres placed at random inside the region so that they
-// overlap neither each other nor any sphere already in `out` (earlier sets).
-// Random sequential addition, largest first, each sphere uniform over the
-// space still free; the same seed gives the same fill on every platform.
-// Ids continue from out.size(). Throws GenerateError when the region is too
-// full (or for more than 2e8 spheres).
+// Appends the random fill's `count` spheres (scene/fill_blocks.hpp: block by
+// block, each block by random sequential addition, largest first), so that
+// they overlap neither each other nor any sphere already in `out` (earlier
+// sets). The same seed gives the same fill on every platform and for any
+// rank count. Ids continue from out.size(). Throws GenerateError when the
+// region is too full.
 void generate_random_fill(const RandomFillSpec& spec, std::vector<ParticleInit>& out);
 
 // Calls its argument for every sphere of the earlier sets (obstacles to a fill).

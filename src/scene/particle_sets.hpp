@@ -3,9 +3,11 @@
 // shares, and a lattice kept as its description.
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "core/types.hpp"
 #include "core/vec3.hpp"
+#include "scene/fill_region.hpp"
 
 namespace gs {
 
@@ -40,6 +42,37 @@ struct LatticeSource {
   LatticeSpec spec;
   ParticleId first_id = 0;
   std::size_t count = 0;  // sites
+};
+
+// A random fill: `count` spheres of `size` placed at random in `region`
+// (scene/fill_blocks.hpp says how).
+struct RandomFillSpec {
+  ParticleTemplate tmpl;
+  FillRegion region;
+  std::size_t count = 0;
+  SizeSpec size;
+  std::uint64_t seed = 0;
+  int max_attempts = 5000;  // overlap tests per particle before giving up
+};
+
+// The blocks a random fill is cut into: nx × ny × nz equal boxes over the
+// region's bounds (x fastest); block b holds the fill's particles
+// start[b] .. start[b + 1] - 1, each block filled on its own.
+struct FillBlocks {
+  Vec3d lo, hi;        // the region's bounds
+  int n[3] = {1, 1, 1};
+  std::vector<std::size_t> start;  // blocks + 1 entries
+  std::size_t count() const { return start.size() - 1; }
+};
+
+// A random fill of the scene, kept as its description: its particles get the
+// ids first_id, first_id + 1, ... block by block, and are generated where
+// they are needed (scene/particle_sources.hpp).
+struct RandomFillSource {
+  RandomFillSpec spec;
+  ParticleId first_id = 0;
+  std::size_t count = 0;
+  FillBlocks blocks;
 };
 
 }  // namespace gs

@@ -1,8 +1,11 @@
 #include "scene/particle_sources.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <exception>
 #include <limits>
 
+#include "scene/fill_blocks.hpp"
 #include "scene/generators.hpp"
 
 namespace gs {
@@ -21,22 +24,100 @@ ParticleInit LatticeSites::at(std::size_t site) const {
   return make_particle(spec_.tmpl, first_id_ + site, position, spec_.radius);
 }
 
+namespace {
+
+// Does a sphere at c of radius r reach into the box [lo, hi]?
+bool reaches(const Vec3d& c, double r, const Vec3d& lo, const Vec3d& hi) {
+  return c.x + r >= lo.x && c.x - r <= hi.x && c.y + r >= lo.y && c.y - r <= hi.y && c.z + r >= lo.z &&
+         c.z - r <= hi.z;
+}
+
+// Sites [from, to] along one axis whose sphere can reach [lo, hi] (one site
+// of slack each way; the caller tests exactly); false when none.
+bool site_range(double min, double spacing, std::size_t n, double lo, double hi, std::size_t& from, std::size_t& to) {
+  const double a = std::floor((lo - min) / spacing) - 1, b = std::floor((hi - min) / spacing) + 1;
+  if (b < 0 || a > double(n - 1)) return false;
+  from = std::size_t(std::max(a, 0.0));
+  to = std::size_t(std::min(b, double(n - 1)));
+  return true;
+}
+
+// Blocks of fill generation kept for the next caller: enough for every thread's
+// neighbours in id order.
+constexpr std::size_t kCachedBlocks = 64;
+
+}  // namespace
+
+void LatticeSites::for_each_near(const Vec3d& lo, const Vec3d& hi,
+                                 const std::function<void(const ParticleInit&)>& visit) const {
+  const double r = spec_.radius, h = spec_.spacing;
+  std::size_t i0, i1, j0, j1, k0, k1;
+  if (!site_range(spec_.min.x, h, nx_, lo.x - r, hi.x + r, i0, i1) ||
+      !site_range(spec_.min.y, h, ny_, lo.y - r, hi.y + r, j0, j1) ||
+      !site_range(spec_.min.z, h, nz_, lo.z - r, hi.z + r, k0, k1))
+    return;
+  for (std::size_t k = k0; k <= k1; ++k)
+    for (std::size_t j = j0; j <= j1; ++j)
+      for (std::size_t i = i0; i <= i1; ++i) {
+        const ParticleInit p = at((k * ny_ + j) * nx_ + i);
+        if (reaches(p.position, p.radius, lo, hi)) visit(p);
+      }
+}
+
 ParticleStream::ParticleStream(const SceneSpec& scene) : scene_(scene) {
   const std::vector<ParticleInit>& listed = scene.particles;
+  // The generated sets in id order, each after the listed particles before it.
+  std::vector<Segment> sets;
+  for (const LatticeSource& l : scene.lattices) sets.push_back({&l, nullptr, 0, l.first_id, l.count});
+  for (const RandomFillSource& f : scene.fills) sets.push_back({nullptr, &f, 0, f.first_id, f.count});
+  std::stable_sort(sets.begin(), sets.end(), [](const Segment& a, const Segment& b) { return a.begin < b.begin; });
   std::size_t e = 0;
-  auto add = [&](const LatticeSource* lattice, std::size_t offset, std::size_t count) {
-    if (count == 0) return;
-    segments_.push_back({lattice, offset, count_, count});
-    count_ += count;
+  auto add = [&](Segment seg) {
+    if (seg.count == 0) return;
+    seg.begin = count_;
+    segments_.push_back(seg);
+    count_ += seg.count;
   };
-  for (const LatticeSource& l : scene.lattices) {
+  for (const Segment& set : sets) {
     const std::size_t run = e;
-    while (e < listed.size() && listed[e].id < l.first_id) ++e;
-    add(nullptr, run, e - run);
-    sites_.emplace_back(l.spec, l.first_id);
-    add(&l, 0, l.count);
+    while (e < listed.size() && listed[e].id < set.begin) ++e;
+    add({nullptr, nullptr, run, 0, e - run});
+    add(set);
   }
-  add(nullptr, e, listed.size() - e);
+  add({nullptr, nullptr, e, 0, listed.size() - e});
+  for (const LatticeSource& l : scene.lattices) sites_.emplace_back(l.spec, l.first_id);
+}
+
+ParticleStream::ParticleStream(const SceneSpec& scene, const Vec3d& lo, const Vec3d& hi) : ParticleStream(scene) {
+  windowed_ = true;
+  window_lo_ = lo;
+  window_hi_ = hi;
+}
+
+bool ParticleStream::in_window(const RandomFillSource& fill, std::size_t b) const {
+  if (!windowed_) return true;
+  Vec3d lo, hi;
+  block_box(fill.blocks, b, lo, hi);  // a block's centres lie in its box
+  return lo.x <= window_hi_.x && lo.y <= window_hi_.y && lo.z <= window_hi_.z && hi.x >= window_lo_.x &&
+         hi.y >= window_lo_.y && hi.z >= window_lo_.z;
+}
+
+ParticleStream::Block ParticleStream::fill_block(const RandomFillSource& fill, std::size_t b) const {
+  {
+    const std::lock_guard<std::mutex> lock(cache_mutex_);
+    for (const CachedBlock& c : cache_)
+      if (c.fill == &fill && c.block == b) return c.particles;
+  }
+  // Made outside the lock: another thread may make the same block meanwhile, with the same bits.
+  auto made = std::make_shared<std::vector<ParticleInit>>();
+  const SpheresNear earlier = [this, &fill](const Vec3d& lo, const Vec3d& hi, const SphereVisitor& visit) {
+    for_each_near(fill.first_id, lo, hi, visit);
+  };
+  generate_fill_block(fill, b, earlier, *made);
+  const std::lock_guard<std::mutex> lock(cache_mutex_);
+  if (cache_.size() < kCachedBlocks) cache_.push_back({&fill, b, made});
+  else cache_[cache_next_++ % kCachedBlocks] = {&fill, b, made};
+  return made;
 }
 
 void ParticleStream::generate(std::size_t first, std::size_t last, std::vector<ParticleInit>& out) const {
@@ -49,6 +130,16 @@ void ParticleStream::generate(std::size_t first, std::size_t last, std::vector<P
     if (seg->lattice) {
       const LatticeSites& sites = sites_[std::size_t(seg->lattice - scene_.lattices.data())];
       for (std::size_t k = from; k < to; ++k) out.push_back(sites.at(k));
+    } else if (seg->fill) {
+      const FillBlocks& blocks = seg->fill->blocks;
+      for (std::size_t b = block_of(blocks, from); b < blocks.count() && blocks.start[b] < to; ++b) {
+        if (!in_window(*seg->fill, b)) continue;
+        const Block made = fill_block(*seg->fill, b);
+        const std::size_t s0 = blocks.start[b];
+        const auto begin = made->begin() - std::ptrdiff_t(s0);
+        out.insert(out.end(), begin + std::ptrdiff_t(std::max(from, s0)),
+                   begin + std::ptrdiff_t(std::min(to, blocks.start[b + 1])));
+      }
     } else {
       const auto begin = scene_.particles.begin() + std::ptrdiff_t(seg->offset);
       out.insert(out.end(), begin + std::ptrdiff_t(from), begin + std::ptrdiff_t(to));
@@ -57,9 +148,30 @@ void ParticleStream::generate(std::size_t first, std::size_t last, std::vector<P
   }
 }
 
+void ParticleStream::for_each_near(std::size_t before, const Vec3d& lo, const Vec3d& hi,
+                                   const std::function<void(const ParticleInit&)>& visit) const {
+  for (const Segment& seg : segments_) {
+    if (seg.begin >= before) break;
+    if (seg.lattice) {
+      sites_[std::size_t(seg.lattice - scene_.lattices.data())].for_each_near(lo, hi, visit);
+    } else if (seg.fill) {
+      const Vec3d r = largest_radius(seg.fill->spec.size) * Vec3d(1, 1, 1);
+      for (std::size_t b : blocks_meeting(seg.fill->blocks, lo - r, hi + r))
+        for (const ParticleInit& p : *fill_block(*seg.fill, b))
+          if (reaches(p.position, p.radius, lo, hi)) visit(p);
+    } else {
+      for (std::size_t k = seg.offset; k < seg.offset + seg.count; ++k) {
+        const ParticleInit& p = scene_.particles[k];
+        if (reaches(p.position, p.radius, lo, hi)) visit(p);
+      }
+    }
+  }
+}
+
 std::size_t particle_count(const SceneSpec& scene) {
   std::size_t n = scene.particles.size();
   for (const LatticeSource& l : scene.lattices) n += l.count;
+  for (const RandomFillSource& f : scene.fills) n += f.count;
   return n;
 }
 
@@ -67,6 +179,10 @@ void for_each_radius(const SceneSpec& scene, const std::function<void(int, doubl
   for (const ParticleInit& p : scene.particles) visit(p.material, p.radius);
   for (const LatticeSource& l : scene.lattices)
     if (l.count > 0) visit(l.spec.tmpl.material, l.spec.radius);
+  for (const RandomFillSource& f : scene.fills) {
+    visit(f.spec.tmpl.material, smallest_radius(f.spec.size));
+    visit(f.spec.tmpl.material, largest_radius(f.spec.size));
+  }
   // The particles an inlet will insert: its extreme radii bound them all.
   for (const InletSpec& inlet : scene.inlets) {
     visit(inlet.tmpl.material, smallest_radius(inlet.size));
@@ -93,21 +209,33 @@ namespace {
 constexpr std::size_t kChunk = std::size_t(1) << 16;
 
 // Calls work(chunk, its particles) for the chunks of [first, last) on every
-// thread; chunk c holds particles first + c kChunk onwards.
+// thread; chunk c holds particles first + c kChunk onwards. An exception (a
+// fill too full) is passed on after the loop: that of the first such chunk.
 template <class Work>
 void in_chunks(const ParticleStream& stream, std::size_t first, std::size_t last, Work&& work) {
   const long chunks = long((last - first + kChunk - 1) / kChunk);
+  long failed = chunks;
+  std::exception_ptr error;
 #pragma omp parallel
   {
     std::vector<ParticleInit> buffer;
 #pragma omp for schedule(dynamic)
     for (long c = 0; c < chunks; ++c) {
-      const std::size_t a = first + std::size_t(c) * kChunk;
-      buffer.clear();
-      stream.generate(a, std::min(last, a + kChunk), buffer);
-      work(std::size_t(c), buffer);
+      try {
+        const std::size_t a = first + std::size_t(c) * kChunk;
+        buffer.clear();
+        stream.generate(a, std::min(last, a + kChunk), buffer);
+        work(std::size_t(c), buffer);
+      } catch (...) {
+#pragma omp critical(gs_in_chunks_error)
+        if (c < failed) {
+          failed = c;
+          error = std::current_exception();
+        }
+      }
     }
   }
+  if (error) std::rethrow_exception(error);
 }
 
 }  // namespace
@@ -134,11 +262,12 @@ std::vector<ParticleInit> select_particles(const SceneSpec& scene, const std::fu
   return out;
 }
 
-void for_each_selected_block(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep,
-                             std::size_t block, const std::function<void(std::size_t)>& size,
-                             const std::function<void(std::size_t, const ParticleInit&)>& write,
-                             const std::function<void(std::size_t, std::size_t)>& done) {
-  const ParticleStream stream(scene);
+namespace {
+
+void select_blocks(const ParticleStream& stream, const std::function<bool(const Vec3d&)>& keep, std::size_t block,
+                   const std::function<void(std::size_t)>& size,
+                   const std::function<void(std::size_t, const ParticleInit&)>& write,
+                   const std::function<void(std::size_t, std::size_t)>& done) {
   const std::size_t n = stream.count(), chunks = (n + kChunk - 1) / kChunk;
   // offset[c]: the rank of chunk c's first selected particle.
   std::vector<std::size_t> offset(chunks + 1, 0);
@@ -161,6 +290,26 @@ void for_each_selected_block(const SceneSpec& scene, const std::function<bool(co
               });
     done(offset[c0], offset[c1] - offset[c0]);
   }
+}
+
+
+}  // namespace
+
+void for_each_selected_block(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep,
+                             std::size_t block, const std::function<void(std::size_t)>& size,
+                             const std::function<void(std::size_t, const ParticleInit&)>& write,
+                             const std::function<void(std::size_t, std::size_t)>& done) {
+  select_blocks(ParticleStream(scene), keep, block, size, write, done);
+}
+
+// Chunk c's particles may come short of kChunk (blocks outside the window
+// are left out), but every one left out is one `keep` refuses: the counts and
+// ranks of the selected particles are those of the whole stream.
+void for_each_selected_block(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep,
+                             const KeepWindow& window, std::size_t block, const std::function<void(std::size_t)>& size,
+                             const std::function<void(std::size_t, const ParticleInit&)>& write,
+                             const std::function<void(std::size_t, std::size_t)>& done) {
+  select_blocks(ParticleStream(scene, window.lo, window.hi), keep, block, size, write, done);
 }
 
 void for_each_selected(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep,

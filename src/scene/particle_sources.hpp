@@ -4,6 +4,8 @@
 // setup needs from all of them (count, radii) without generating any.
 #include <cstddef>
 #include <functional>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include "scene/scene.hpp"
@@ -18,6 +20,8 @@ class LatticeSites {
   LatticeSites(const LatticeSpec& spec, ParticleId first_id);
   std::size_t count() const { return nx_ * ny_ * nz_; }
   ParticleInit at(std::size_t site) const;
+  // Calls visit for the sites whose sphere reaches into the box [lo, hi].
+  void for_each_near(const Vec3d& lo, const Vec3d& hi, const std::function<void(const ParticleInit&)>& visit) const;
 
  private:
   LatticeSpec spec_;
@@ -26,30 +30,56 @@ class LatticeSites {
 };
 
 // The scene's particles as one sequence in id order: the explicit particles
-// (SceneSpec::particles, ascending ids) merged with the lattices by id.
+// (SceneSpec::particles, ascending ids) merged with the lattices and random
+// fills by id. A fill's blocks are made on demand (scene/fill_blocks.hpp),
+// the last few kept for the next caller (any thread).
 class ParticleStream {
  public:
   explicit ParticleStream(const SceneSpec& scene);
+  // With a window: random-fill blocks that do not meet the box [lo, hi] are
+  // left out (generate skips their particles), for callers that keep only
+  // particles inside the window anyway.
+  ParticleStream(const SceneSpec& scene, const Vec3d& lo, const Vec3d& hi);
   std::size_t count() const { return count_; }
-  // Appends particles [first, last) of the sequence to out.
+  // Appends particles [first, last) of the sequence to out (less those of
+  // blocks outside the window). Thread-safe.
   void generate(std::size_t first, std::size_t last, std::vector<ParticleInit>& out) const;
+  // Calls visit for the particles before `before` whose sphere reaches into
+  // the box [lo, hi]: the obstacles a fill's block must avoid.
+  void for_each_near(std::size_t before, const Vec3d& lo, const Vec3d& hi,
+                     const std::function<void(const ParticleInit&)>& visit) const;
 
  private:
-  // A run of explicit particles (lattice null: particles[offset ...]) or a whole lattice.
+  // A run of explicit particles (no source: particles[offset ...]), a whole lattice or a whole fill.
   struct Segment {
     const LatticeSource* lattice;
+    const RandomFillSource* fill;
     std::size_t offset, begin, count;  // begin: index of its first particle in the sequence
   };
+  using Block = std::shared_ptr<const std::vector<ParticleInit>>;
+  struct CachedBlock {
+    const RandomFillSource* fill;
+    std::size_t block;
+    Block particles;
+  };
+  Block fill_block(const RandomFillSource& fill, std::size_t b) const;
+  bool in_window(const RandomFillSource& fill, std::size_t b) const;
+
   const SceneSpec& scene_;
   std::vector<Segment> segments_;
   std::vector<LatticeSites> sites_;  // one per lattice
   std::size_t count_ = 0;
+  bool windowed_ = false;
+  Vec3d window_lo_, window_hi_;
+  mutable std::mutex cache_mutex_;
+  mutable std::vector<CachedBlock> cache_;  // a ring of recent blocks
+  mutable std::size_t cache_next_ = 0;
 };
 
 std::size_t particle_count(const SceneSpec& scene);
 // Calls visit(material, radius) for every explicit particle, once per
-// lattice, and for the smallest and largest radius of each inlet: every
-// radius the run can have, without generating a lattice.
+// lattice, and for the smallest and largest radius of each random fill and
+// inlet: bounds of every radius the run can have, without generating a set.
 void for_each_radius(const SceneSpec& scene, const std::function<void(int material, double radius)>& visit);
 double largest_radius(const SceneSpec& scene);   // 0 without particles
 double smallest_radius(const SceneSpec& scene);  // infinity without particles
@@ -79,6 +109,16 @@ void for_each_selected(const SceneSpec& scene, const std::function<bool(const Ve
 // and its length. Setup uploads each block while the host holds only one.
 void for_each_selected_block(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep,
                              std::size_t block, const std::function<void(std::size_t)>& size,
+                             const std::function<void(std::size_t, const ParticleInit&)>& write,
+                             const std::function<void(std::size_t first, std::size_t count)>& done);
+
+// Where `keep` can accept anything: a box that holds every position it
+// accepts. Random-fill blocks outside it are never made.
+struct KeepWindow {
+  Vec3d lo, hi;
+};
+void for_each_selected_block(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep,
+                             const KeepWindow& window, std::size_t block, const std::function<void(std::size_t)>& size,
                              const std::function<void(std::size_t, const ParticleInit&)>& write,
                              const std::function<void(std::size_t first, std::size_t count)>& done);
 

@@ -97,13 +97,14 @@ inline PeriodicBox periodic_box(const SceneSettings& s) {
 inline unsigned particle_fields_kept(const SceneSettings& s) { return s.periodic_axes != 0 ? kImageCounts : 0u; }
 
 struct SceneSpec : SceneSettings {
-  // The initial particles, in two kinds of sets whose ids interleave in the
-  // file's order: particles given one by one (lists, random fills, scenes
-  // built in code), ascending ids; and lattices, kept as their description
+  // The initial particles, in kinds of sets whose ids interleave in the
+  // file's order: particles given one by one (lists, scenes built in code),
+  // ascending ids; and lattices and random fills, kept as their description
   // and generated where needed (scene/particle_sources.hpp), so that no rank
-  // ever holds every particle of a big lattice.
+  // ever holds every particle of a big set.
   std::vector<ParticleInit> particles;
   std::vector<LatticeSource> lattices;
+  std::vector<RandomFillSource> fills;
 };
 
 }  // namespace gs

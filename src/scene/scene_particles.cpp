@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 
+#include "scene/fill_blocks.hpp"
 #include "scene/generators.hpp"
 #include "scene/particle_sources.hpp"
 #include "scene/scene_loader.hpp"
@@ -126,11 +127,9 @@ void add_random_fill(SceneSpec& s, const Val& v) {
   spec.count = std::size_t(integer(m.get("count"), 1, kMaxParticleId));
   spec.size = parse_sizes(m);
   if (m.has("seed")) spec.seed = std::uint64_t(integer(m.get("seed"), 0, LLONG_MAX));
-  // Random sequential addition is serial: every rank places the whole fill,
-  // around the spheres of the earlier sets.
+  // Kept as its description: blocks are placed where needed (scene/fill_blocks.hpp).
   const std::size_t first = particle_count(s);
-  const EarlierSpheres earlier = [&s](const SphereVisitor& visit) { for_each_particle(s, visit); };
-  generate(v, [&] { generate_random_fill(spec, earlier, first, s.particles); });
+  generate(v, [&] { s.fills.push_back(make_fill_source(spec, first)); });
 }
 
 void add_list(SceneSpec& s, const Val& v, std::vector<Origin>& origins) {
@@ -182,11 +181,23 @@ const Val& origin_of(const std::vector<Origin>& origins, std::size_t particle) {
   return std::prev(it)->where;
 }
 
+// Runs f; a set that cannot be generated (a random fill too full) is an
+// error at that set's line.
+template <class F>
+void generate_sets(const std::vector<Origin>& origins, F&& f) {
+  try {
+    f();
+  } catch (const GenerateError& e) {
+    fail(e.set_first == GenerateError::kUnknown ? origins.front().where : origin_of(origins, e.set_first), e.what());
+  }
+}
+
 // The first particle (in id order) that does not fit is reported; the
-// search runs on every thread, over lattices generated chunk by chunk.
+// search runs on every thread, over lattices and fills generated chunk by chunk.
 void check_fit(const SceneSpec& s, const std::vector<Origin>& origins) {
   const std::size_t n = particle_count(s);
-  const std::size_t bad = find_first(s, 0, n, [&s](const ParticleInit& p) { return !misfit(s, p).empty(); });
+  std::size_t bad = n;
+  generate_sets(origins, [&] { bad = find_first(s, 0, n, [&s](const ParticleInit& p) { return !misfit(s, p).empty(); }); });
   if (bad == n) return;
   std::vector<ParticleInit> p;
   ParticleStream(s).generate(bad, bad + 1, p);
@@ -199,7 +210,8 @@ void check_fit(const SceneSpec& s, const std::vector<Origin>& origins) {
 void check_packing(const SceneSpec& s, const std::vector<Origin>& origins, bool generated_alone) {
   check_fit(s, origins);
   if (generated_alone) return;
-  const std::vector<ParticleInit> all = all_particles(s);
+  std::vector<ParticleInit> all;
+  generate_sets(origins, [&] { all = all_particles(s); });
   std::size_t a = 0, b = 0;
   bool overlap = false;
   generate(origins.front().where, [&] { overlap = find_overlap(all, a, b, kTouchTolerance); });

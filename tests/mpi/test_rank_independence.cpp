@@ -18,7 +18,9 @@
 #include "comm/scene_split.hpp"
 #include "comm/snapshot_gather.hpp"
 #include "io/state_digest.hpp"
+#include "scene/fill_blocks.hpp"
 #include "scene/generators.hpp"
+#include "scene/particle_sources.hpp"
 #include "support/support.hpp"
 
 namespace gs::test {
@@ -131,7 +133,7 @@ void expect_rank_independent(const SceneSpec& scene, long long steps, RunOptions
               state_digest(ref, one.history()));
   ASSERT_EQ(all.size(), ref.size()) << "particles lost or duplicated";
   if (scene.inlets.empty())
-    ASSERT_EQ(all.size() + removed.size(), scene.particles.size()) << "particles lost or duplicated";
+    ASSERT_EQ(all.size() + removed.size(), particle_count(scene)) << "particles lost or duplicated";
   EXPECT_TRUE(same_removals(removed, ref_removed)) << removed.size() << " removed on " << world().size()
                                                    << " ranks, " << ref_removed.size() << " on one";
   if (scene.has_exits()) {
@@ -190,6 +192,26 @@ TEST(RankIndependence, PolydisperseFrictionalSettlingWithSlabs) {
 
 TEST(RankIndependence, PolydisperseFrictionalSettlingWithMetis) {
   expect_rank_independent(settling_scene(DecompositionMethod::metis), 1500);
+}
+
+// A random fill kept as its source, cut into two blocks along x: each rank
+// makes only the blocks that meet its slab (a window at setup; on 3 and 4
+// ranks the outer slabs meet one block each), and the particles, and the
+// run, are those of one rank.
+TEST(RankIndependence, RandomFillBlocksMadePerRank) {
+  SceneSpec s = frictional_box(0.07, 0.02);
+  RandomFillSpec fill;
+  fill.region.min = {0.0015, 0.0015, 0.0015};
+  fill.region.max = {0.0685, 0.0185, 0.0185};
+  fill.count = 8200;
+  fill.size.radius_min = fill.size.radius_max = 0.0004;
+  fill.seed = 9;
+  fill.tmpl.velocity = {0, 0, -2};  // thrown at the floor: contacts within the run
+  s.fills.push_back(make_fill_source(fill, 0));
+  ASSERT_EQ(s.fills.front().blocks.count(), 2u);
+  s.decomposition.axis = 0;
+  s.time_step = 2e-5;
+  expect_rank_independent(s, 80);
 }
 
 // An inlet above a settling bed, its region cut by the slabs (along x): every

@@ -329,6 +329,15 @@ TEST(SceneLoaderErrors, RandomFillTooFull) {
   expect_error(edit("  - list:\n", fill + "  - list:\n"), 15, "particles[1].random_fill", "too full");
 }
 
+// Below the up-front limit, but beyond what random addition reaches: the fill
+// fails while its blocks are made for the fit check, at its own line.
+TEST(SceneLoaderErrors, RandomFillBlockTooFullNamesItsLine) {
+  const std::string fill =
+      "  - random_fill: {material: glass, count: 403, radius: 0.002, seed: 1,\n"
+      "                  region: {box: {min: [0.05, 0.05, 0.05], max: [0.08, 0.08, 0.08]}}}\n";
+  expect_error(edit("  - list:\n", fill + "  - list:\n"), 15, "particles[1].random_fill", "no free spot");
+}
+
 TEST(SceneLoader, RandomFillAndDistributionInScene) {
   const std::string fill =
       "  - random_fill:\n"
