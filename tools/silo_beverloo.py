@@ -67,7 +67,7 @@ SPREAD = 0.1
 # normal stiffness [N/m], and the times [s]: gate opening, start of the
 # measuring window, end of the run.
 VARIANTS = {
-    "ci": dict(silo=14, fill=17, orifices=[5.0, 6.0], stiffness=400.0,
+    "ci": dict(silo=14, fill=17, orifices=[4.5, 5.5], stiffness=400.0,
                t_open=0.45, t_measure=0.55, t_end=0.85),
     "medium": dict(silo=16, fill=20, orifices=[4.0, 5.0, 6.0], stiffness=400.0,
                    t_open=0.5, t_measure=0.6, t_end=1.1),
@@ -180,8 +180,9 @@ def case_name(d0_over_d):
 
 
 def read_rows(path):
+    """The rows of a CSV file by its header, '#' comment lines (a snapshot's first) skipped."""
     with open(path, newline="") as f:
-        return list(csv.DictReader(f))
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
 
 
 def flow_rates(run_dir, t_measure, t_end):
@@ -215,10 +216,11 @@ def solid_fraction_before(run_dir, name, t):
     return float(rows[-1]["solid_fraction"]), float(rows[-1]["mass"])
 
 
-def overlaps(run_dir, t, r_silo):
+def overlaps(run_dir, t, r_silo, d0):
     """Mean and largest overlap over d of the contacts (particle-particle, the
-    floor, the silo's wall) in the snapshot at time t (the bed at rest before
-    the gate opens), from a cell list over the centres."""
+    bottom plate, the gate, the silo's wall; not the orifice's rim) in the
+    snapshot at time t (the bed at rest before the gate opens), from a cell
+    list over the centres."""
     step = max(int(r["step"]) for r in read_rows(os.path.join(run_dir, "timeseries.csv"))
                if float(r["time"]) <= t)
     rows = read_rows(os.path.join(run_dir, "particles_%010d.csv" % step))
@@ -239,9 +241,11 @@ def overlaps(run_dir, t, r_silo):
                         o = r + q[3] - math.sqrt((x - q[0]) ** 2 + (y - q[1]) ** 2 + (z - q[2]) ** 2)
                         if o > 0:
                             found.append(o)
-        if 0 <= z < r:
-            found.append(r - z)
         rho = math.hypot(x, y)
+        if rho >= d0 / 2 and abs(z) < r:          # the bottom plate, beside the orifice
+            found.append(r - abs(z))
+        if rho <= d0 and 0 <= z + 0.5 * D < r:     # the gate under the orifice
+            found.append(r - (z + 0.5 * D))
         if rho + r > r_silo:
             found.append(rho + r - r_silo)
     if not found:
@@ -331,7 +335,7 @@ def measure(out, v, d0, seconds):
     phi, _ = solid_fraction_before(out, "bulk", v["t_open"])
     _, mass_open = solid_fraction_before(out, "silo", v["t_open"])
     _, mass_end = solid_fraction_before(out, "silo", v["t_end"] + 1)
-    mean_overlap, max_overlap, contacts = overlaps(out, v["t_open"], v["silo"] * D / 2)
+    mean_overlap, max_overlap, contacts = overlaps(out, v["t_open"], v["silo"] * D / 2, d0 * D)
     r.update(d0=d0, phi=phi, seconds=seconds, mass_open=mass_open, mass_end=mass_end,
              mean_overlap=mean_overlap, max_overlap=max_overlap, contacts=contacts)
     return r
