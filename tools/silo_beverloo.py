@@ -67,7 +67,7 @@ SPREAD = 0.1
 # normal stiffness [N/m], and the times [s]: gate opening, start of the
 # measuring window, end of the run.
 VARIANTS = {
-    "ci": dict(silo=14, fill=17, orifices=[4.5, 5.5], stiffness=400.0,
+    "ci": dict(silo=14, fill=17, orifices=[5.0, 6.0], stiffness=400.0,
                t_open=0.45, t_measure=0.55, t_end=0.85),
     "medium": dict(silo=16, fill=20, orifices=[4.0, 5.0, 6.0], stiffness=400.0,
                    t_open=0.5, t_measure=0.6, t_end=1.1),
