@@ -26,7 +26,7 @@ lie in the band those ranges give, widened by TOL_BAND; its rates over the
 two halves of the measuring window must agree within TOL_STEADY. Exit status
 0 when every check passes, 1 when one fails, 2 on a usage or run error.
 
-Variants: `ci` (two orifices, ~2.7k particles, the CTest validation_silo),
+Variants: `ci` (orifices 6 and 7 d, ~4.7k particles, the CTest validation_silo),
 `medium` (three orifices, ~4.5k particles, a CPU run for the docs), `full` (five
 orifices D0 = 5-15 d in a silo of 40 d, ~75k particles, the GPU run of
 bench/validation_silo_gpu.sh; its scenes are cases/validation/silo/*.yaml).
