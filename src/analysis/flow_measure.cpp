@@ -13,7 +13,9 @@ int flow_crossing(const FlowSpec& f, const Vec3d& before, const Vec3d& after) {
   // Where the segment cuts the plane, relative to the plane's point.
   const Vec3d hit = before + (after - before) * (s0 / (s0 - s1)) - f.point;
   switch (f.bound) {
-    case FlowBound::none: break;
+    case FlowBound::none:
+    case FlowBound::mesh:  // counted by FlowMeshSurface
+      break;
     case FlowBound::disk:
       if (norm2(hit - f.normal * dot(hit, f.normal)) > f.radius * f.radius) return 0;
       break;
@@ -24,20 +26,30 @@ int flow_crossing(const FlowSpec& f, const Vec3d& before, const Vec3d& after) {
   return front1 ? 1 : -1;
 }
 
-void FlowTally::add(int crossing, double mass) {
-  if (crossing > 0) {
+void FlowTally::add(const FlowCrossings& crossings, double mass) {
+  // A particle through a folded mesh may cross more than once; each crossing
+  // adds its mass (in order, so that one crossing adds exactly `mass`).
+  for (int k = 0; k < crossings.forward; ++k) {
     ++forward;
     forward_mass += mass;
-  } else if (crossing < 0) {
+  }
+  for (int k = 0; k < crossings.backward; ++k) {
     ++backward;
     backward_mass += mass;
   }
 }
 
 FlowCounter::FlowCounter(const FlowSpec& spec, const std::vector<std::string>& material_names) : spec_(spec) {
+  if (spec.bound == FlowBound::mesh) mesh_ = std::make_shared<const FlowMeshSurface>(spec.surface);
   groups_.emplace_back();
   for (const std::string& m : material_names) groups_.push_back({m, "all", {}, {}});
   for (int k : spec.markers) groups_.push_back({"all", std::to_string(k), {}, {}});
+}
+
+FlowCrossings FlowCounter::crossings(const Vec3d& before, const Vec3d& after) const {
+  if (mesh_) return mesh_->crossings(before, after);
+  const int c = flow_crossing(spec_, before, after);
+  return {c > 0 ? 1 : 0, c < 0 ? 1 : 0};
 }
 
 void FlowCounter::remember(const ParticleSnapshot& s) {
@@ -65,8 +77,8 @@ void FlowCounter::update(const ParticleSnapshot& s) {
   for (std::size_t i = 0; i < s.size(); ++i) {
     while (p < previous_id_.size() && previous_id_[p] < s.id[i]) ++p;
     if (p == previous_id_.size() || previous_id_[p] != s.id[i]) continue;
-    const int c = flow_crossing(spec_, previous_position_[p], s.position[i]);
-    if (c == 0) continue;
+    const FlowCrossings c = crossings(previous_position_[p], s.position[i]);
+    if (c.forward == 0 && c.backward == 0) continue;
     const double m = double(s.mass[i]);
     groups_[0].interval.add(c, m);
     if (std::size_t(s.material[i]) < n_materials) groups_[1 + s.material[i]].interval.add(c, m);

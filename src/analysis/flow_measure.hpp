@@ -1,20 +1,24 @@
 #pragma once
-// Flow of particles through a flat surface (a plane, a disk or a rectangle),
-// counted from the particle centres at consecutive evaluations
+// Flow of particles through a surface (a plane, a disk, a rectangle or a
+// triangle mesh), counted from the particle centres at consecutive evaluations
 // (docs/MEASUREMENTS.md): a particle has crossed when the straight segment
-// between its two sampled centres cuts the plane inside the bound. Signed:
-// +1 from the back (n . (x - point) < 0) to the front (>= 0), -1 back again.
+// between its two sampled centres cuts the plane inside the bound (a mesh:
+// analysis/flow_mesh.hpp). Signed: +1 from the back (n . (x - point) < 0) to
+// the front (>= 0), -1 back again.
 // Evaluated on a gathered snapshot, in particle-id order: counts and mass sums
 // are the same bits whatever the rank count.
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "analysis/flow_mesh.hpp"
 #include "core/particle_snapshot.hpp"
 #include "scene/measurement_spec.hpp"
 
 namespace gs {
 
-// The crossing of one particle: +1, -1 or 0 (none, or outside the bound).
+// The crossing of one particle through a flat surface: +1, -1 or 0 (none, or
+// outside the bound).
 int flow_crossing(const FlowSpec& f, const Vec3d& before, const Vec3d& after);
 
 // What crossed in one group of particles (a material, a marker, or all).
@@ -23,7 +27,7 @@ struct FlowTally {
   double forward_mass = 0, backward_mass = 0;  // [kg]
   long long net_count() const { return forward - backward; }
   double net_mass() const { return forward_mass - backward_mass; }
-  void add(int crossing, double mass);
+  void add(const FlowCrossings& crossings, double mass);
 };
 
 // The rows of one evaluation: group 0 is every particle, then one per
@@ -51,7 +55,10 @@ class FlowCounter {
  private:
   void remember(const ParticleSnapshot& s);
 
+  FlowCrossings crossings(const Vec3d& before, const Vec3d& after) const;
+
   FlowSpec spec_;
+  std::shared_ptr<const FlowMeshSurface> mesh_;  // a mesh surface; null for a flat one
   std::vector<FlowGroup> groups_;
   std::vector<ParticleId> previous_id_;  // ascending
   std::vector<Vec3d> previous_position_;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/vec3.hpp"
+#include "walls/triangle_mesh.hpp"
 
 namespace gs {
 
@@ -16,10 +17,11 @@ struct MeasurementTimes {
   double start = 0;  // simulated time of the first evaluation [s]
 };
 
-// Flow through a flat surface: the plane through `point` with unit `normal`,
+// Flow through a surface: the plane through `point` with unit `normal`,
 // bounded by a disk (`radius` > 0) or a rectangle (`half_lengths` > 0 along
-// `axis_u` and `axis_v` = normal x axis_u), or unbounded.
-enum class FlowBound { none, disk, rectangle };
+// `axis_u` and `axis_v` = normal x axis_u), or unbounded; or a triangle mesh
+// (`surface`, each triangle's normal from its winding; point and normal unused).
+enum class FlowBound { none, disk, rectangle, mesh };
 
 struct FlowSpec {
   std::string name;  // output file flow_<name>.csv
@@ -28,6 +30,7 @@ struct FlowSpec {
   double radius = 0;                    // disk
   Vec3d axis_u, axis_v;                 // rectangle, unit, in the plane
   double half_length_u = 0, half_length_v = 0;
+  TriangleMesh surface;                 // mesh
   std::vector<int> markers;             // markers with a row of their own (the rows per material always exist)
   MeasurementTimes times;
 };

@@ -1,9 +1,12 @@
 // `measurements:` -> SceneSpec::measurements (docs/SCENES.md, docs/MEASUREMENTS.md).
 #include <cmath>
+#include <filesystem>
 #include <set>
+#include <stdexcept>
 #include <string>
 
 #include "scene/scene_sections.hpp"
+#include "walls/stl.hpp"
 
 namespace gs::scene_yaml {
 
@@ -48,10 +51,52 @@ void read_rectangle(const Val& v, FlowSpec& f) {
   f.bound = FlowBound::rectangle;
 }
 
+void read_markers(const Map& m, FlowSpec& f) {
+  if (!m.has("markers")) return;
+  for_each_item(m.get("markers"), [&](const Val& item, std::size_t) {
+    const int k = int(integer(item, 0, 255));
+    for (int seen : f.markers)
+      if (seen == k) fail(item, "marker " + std::to_string(k) + " is listed twice");
+    f.markers.push_back(k);
+  });
+}
+
+// A mesh surface from an STL file (relative to the scene file), as a mesh
+// wall reads one; it must lie inside the domain.
+void read_surface(const Val& v, const SceneSpec& s, FlowSpec& f) {
+  const Map m(v, {"stl", "scale", "weld_tolerance"});
+  const Val file = m.get("stl");
+  std::filesystem::path path(text(file));
+  if (path.is_relative()) path = std::filesystem::path(s.path).parent_path() / path;
+  StlReadOptions options;
+  options.scale = number_or(m, "scale", 1.0, positive);
+  options.weld_tolerance = number_or(m, "weld_tolerance", 0.0, nonnegative);
+  try {
+    f.surface = read_stl(path.string(), options);
+  } catch (const std::exception& e) {
+    fail(file, cut(e.what(), 4 * kEchoLength));
+  }
+  Vec3d lo, hi;
+  mesh_bounds(f.surface, lo, hi);
+  if (!inside_domain(lo, s) || !inside_domain(hi, s))
+    fail(v, "the mesh (" + str(lo) + " to " + str(hi) + ") reaches outside the domain " + str(s.domain_min) +
+                " to " + str(s.domain_max) + " (a file in mm needs scale: 0.001)");
+  f.bound = FlowBound::mesh;
+}
+
 FlowSpec parse_flow(const Val& v, const SceneSpec& s, std::set<std::string>& taken) {
-  const Map m(v, {"name", "plane", "radius", "rectangle", "markers", "every", "start"});
+  const Map m(v, {"name", "plane", "mesh", "radius", "rectangle", "markers", "every", "start"});
   FlowSpec f;
   f.name = measurement_name(m.get("name"), taken);
+  if (m.has("mesh")) {
+    if (m.has("plane")) fail(m.get("mesh"), "give plane (a flat surface) or mesh, not both");
+    for (const char* bound : {"radius", "rectangle"})
+      if (m.has(bound)) fail(m.get(bound), "bounds a plane; a mesh surface is bounded by its triangles");
+    read_surface(m.get("mesh"), s, f);
+    read_markers(m, f);
+    f.times = read_times(m, s);
+    return f;
+  }
   const Map plane(m.get("plane"), {"point", "normal"});
   f.point = vec3(plane.get("point"));
   if (!inside_domain(f.point, s)) fail(plane.get("point"), str(f.point) + " lies outside the domain");
@@ -62,13 +107,7 @@ FlowSpec parse_flow(const Val& v, const SceneSpec& s, std::set<std::string>& tak
     f.bound = FlowBound::disk;
   }
   if (m.has("rectangle")) read_rectangle(m.get("rectangle"), f);
-  if (m.has("markers"))
-    for_each_item(m.get("markers"), [&](const Val& item, std::size_t) {
-      const int k = int(integer(item, 0, 255));
-      for (int seen : f.markers)
-        if (seen == k) fail(item, "marker " + std::to_string(k) + " is listed twice");
-      f.markers.push_back(k);
-    });
+  read_markers(m, f);
   f.times = read_times(m, s);
   return f;
 }

@@ -31,6 +31,9 @@ for np in 2 3; do
   mpi $np run "$scene" --backend cpu --out "ranks$np" > "ranks$np.log"
   same_measurements one "ranks$np" "$np ranks"
 done
+# The mesh flow (a shallow pyramid, tests/cli/flow_tent.stl) counts spheres settling through it.
+awk -F, '$4 == "all" && $5 == "all" {n = $12} END {exit !(n > 0)}' one/flow_tent.csv ||
+  fail "the mesh flow tent counted no crossing"
 echo "measurements on 1, 2, 3 ranks: bitwise equal"
 
 # Stop at the uninterrupted run's older kept checkpoint (at 0.075 s; they
