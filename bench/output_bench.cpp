@@ -8,6 +8,8 @@
 // Prints one line of key=value: seconds per part, file sizes and GB/s
 // (bytes of the file over the seconds the run waited, and over the seconds
 // until the file was complete).
+#include <time.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -30,10 +32,24 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+// CPU seconds of the whole process (every thread): on a loaded machine a
+// fairer measure of the work than the wall time.
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+std::string cpu_log;  // "name_cpu_s=..." for each timed part
+
 template <class F>
-double timed(F&& f) {
+double timed(const char* name, F&& f) {
   const auto t = Clock::now();
+  const double c = cpu_seconds();
   f();
+  char text[96];
+  std::snprintf(text, sizeof(text), " %s_cpu_s=%.3f", name, cpu_seconds() - c);
+  cpu_log += text;
   return seconds_since(t);
 }
 
@@ -104,18 +120,18 @@ int main(int argc, char** argv) {
     sim.run(1);
     gs::ParticleSnapshot s;
     gs::HostHistory h;
-    const double t_snapshot = timed([&] { s = sim.snapshot(); });
-    const double t_history = timed([&] { h = sim.history(); });
+    const double t_snapshot = timed("snapshot", [&] { s = sim.snapshot(); });
+    const double t_history = timed("history", [&] { h = sim.history(); });
     const std::string snap = dir + "/bench_snapshot.h5", check = dir + "/bench_checkpoint.h5";
     gs::SnapshotMetadata m;
     const double t_write_snapshot =
-        timed([&] { gs::write_snapshot(snap, s, gs::default_snapshot_fields(), sim.walls(), m); });
+        timed("write_snapshot", [&] { gs::write_snapshot(snap, s, gs::default_snapshot_fields(), sim.walls(), m); });
     const double snapshot_gb = gigabytes(snap);
     gs::Checkpoint c;
     const double t_make_checkpoint =
-      timed([&] { c = gs::make_checkpoint(std::move(s), std::move(h), sim.walls(), 0, 1); });
-    const double t_checksum = timed([&] { (void)gs::checkpoint_checksum(c); });
-    const double t_write_checkpoint = timed([&] { gs::write_checkpoint(check, c); });
+      timed("make_checkpoint", [&] { c = gs::make_checkpoint(std::move(s), std::move(h), sim.walls(), 0, 1); });
+    const double t_checksum = timed("checksum", [&] { (void)gs::checkpoint_checksum(c); });
+    const double t_write_checkpoint = timed("write_checkpoint", [&] { gs::write_checkpoint(check, c); });
     const double checkpoint_gb = gigabytes(check);
     c = gs::Checkpoint();
     std::filesystem::remove(snap);
@@ -127,20 +143,20 @@ int main(int argc, char** argv) {
     {
       gs::RunOutput out(scene, dir, *transport, 0);
       const auto t = Clock::now();
-      run_snapshot = timed([&] { out.snapshot(sim); });
-      run_checkpoint = timed([&] { out.checkpoint(sim); });
+      run_snapshot = timed("run_snapshot_wait", [&] { out.snapshot(sim); });
+      run_checkpoint = timed("run_checkpoint_wait", [&] { out.checkpoint(sim); });
       out.finish();
       run_complete = seconds_since(t);
     }
     std::printf("backend=%s n=%zu snapshot_s=%.3f history_s=%.3f write_snapshot_s=%.3f snapshot_gb=%.3f "
                 "make_checkpoint_s=%.3f checksum_s=%.3f write_checkpoint_s=%.3f checkpoint_gb=%.3f "
                 "run_snapshot_wait_s=%.3f run_checkpoint_wait_s=%.3f run_both_complete_s=%.3f "
-                "snapshot_write_gbps=%.3f checkpoint_write_gbps=%.3f run_gbps_complete=%.3f\n",
+                "snapshot_write_gbps=%.3f checkpoint_write_gbps=%.3f run_gbps_complete=%.3f%s\n",
                 gs::backend_name(options.backend), scene.particles.size(), t_snapshot, t_history, t_write_snapshot,
                 snapshot_gb, t_make_checkpoint, t_checksum, t_write_checkpoint, checkpoint_gb, run_snapshot,
                 run_checkpoint, run_complete, snapshot_gb / (t_snapshot + t_write_snapshot),
                 checkpoint_gb / (t_snapshot + t_history + t_make_checkpoint + t_write_checkpoint),
-                (snapshot_gb + checkpoint_gb) / run_complete);
+                (snapshot_gb + checkpoint_gb) / run_complete, cpu_log.c_str());
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "output_bench: %s\n", e.what());
