@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Output speed of a run: snapshots and a checkpoint of a lattice bed
-# (bench/lattice_bed.sh, all snapshot fields) on one rank, 2 steps: the
-# initial and the final snapshot, and a checkpoint at the end. 24e6
-# frictional spheres (a checkpoint with contact history), and 1e8 without
-# friction (no history: the checkpoint fits the disk and the host memory).
+# (bench/lattice_bed.sh) on one rank, 2 steps: the initial and the final
+# snapshot, and a checkpoint at the end. 24e6 frictional spheres (every
+# snapshot field, a checkpoint with contact history), and 1e8 without
+# friction and with the default fields (no history: the files, about 30 GB
+# in all, fit the machine's disk and the checkpoint its host memory).
 #   bench/output_speed.sh BUILD OUT [BEFORE_BUILD] [BACKEND=cuda] [COUNTS="24000000 100000000"]
 # Files go to $OUTPUT_SPEED_DIR (default /tmp/output_speed) and are removed
 # after each run; OUT gets each run's log and output_speed.txt, one line per
@@ -20,13 +21,12 @@ py() { python3 -c "print($1)"; }
 result=$out/output_speed.txt
 : > "$result"
 
-run_case() {  # label build count friction
-  local label=$1 bin=$2/src/grainstorm count=$3 friction=$4
+run_case() {  # label build count friction fields
+  local label=$1 bin=$2/src/grainstorm count=$3 friction=$4 fields=$5
   local side layers scene=$work/bed.yaml dir=$work/run log=$out/${label}_$count.log
   side=$(py "round(($count / 2) ** (1/3))")
   layers=$(py "round($count / $side**2)")
-  "$here/lattice_bed.sh" "$side" "$layers" "$dir" \
-    "id, material, marker, radius, mass, inertia, position, velocity, angular_velocity, orientation, force, torque" |
+  "$here/lattice_bed.sh" "$side" "$layers" "$dir" "$fields" |
     sed "s/^output: {interval: 0, /output: {interval: 0, checkpoint_interval: 1, /; s/friction: true/friction: $friction/" \
     > "$scene"
   rm -rf "$dir"
@@ -46,9 +46,10 @@ run_case() {  # label build count friction
 
 for count in $counts; do
   friction=true
-  [[ $count -gt 50000000 ]] && friction=false
-  run_case after "$build" "$count" "$friction"
-  [[ -n $before ]] && run_case before "$before" "$count" "$friction"
+  fields="id, material, marker, radius, mass, inertia, position, velocity, angular_velocity, orientation, force, torque"
+  if [[ $count -gt 50000000 ]]; then friction=false fields=""; fi
+  run_case after "$build" "$count" "$friction" "$fields"
+  [[ -n $before ]] && run_case before "$before" "$count" "$friction" "$fields"
 done
 nvidia-smi --query-gpu=name --format=csv,noheader >> "$result" 2>/dev/null || true
 echo "commit $(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo unknown), $(date -u +%F)" >> "$result"
