@@ -1,10 +1,9 @@
 #include "comm/snapshot_gather.hpp"
 
 #include "comm/records_codec.hpp"
+#include "core/id_order.hpp"
 
-#include <algorithm>
 #include <cstring>
-#include <numeric>
 #include <stdexcept>
 
 namespace gs {
@@ -50,30 +49,7 @@ void unpack_append(const Bytes& in, ParticleSnapshot& into) {
 
 template <class T>
 void permute(std::vector<T>& v, const std::vector<std::size_t>& order) {
-  if (v.empty()) return;
-  std::vector<T> out(order.size());
-  for (std::size_t k = 0; k < order.size(); ++k) out[k] = v[order[k]];
-  v.swap(out);
-}
-
-// Indices of `id` in ascending id order, given that id[runs[k]..runs[k+1])
-// is ascending for each k (each rank's part): merged run by run, or sorted
-// whole if a run is not in order.
-std::vector<std::size_t> id_order(const std::vector<ParticleId>& id, const std::vector<std::size_t>& runs) {
-  std::vector<std::size_t> order(id.size());
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  const auto by_id = [&](std::size_t a, std::size_t b) { return id[a] < id[b]; };
-  bool runs_sorted = true;
-  for (std::size_t k = 0; k + 1 < runs.size() && runs_sorted; ++k)
-    runs_sorted = std::is_sorted(id.begin() + std::ptrdiff_t(runs[k]), id.begin() + std::ptrdiff_t(runs[k + 1]));
-  if (!runs_sorted) {
-    std::sort(order.begin(), order.end(), by_id);
-    return order;
-  }
-  for (std::size_t k = 1; k + 1 < runs.size(); ++k)
-    std::inplace_merge(order.begin(), order.begin() + std::ptrdiff_t(runs[k]),
-                       order.begin() + std::ptrdiff_t(runs[k + 1]), by_id);
-  return order;
+  if (!v.empty()) v = permuted(v, order);
 }
 
 }  // namespace
@@ -86,13 +62,11 @@ ParticleSnapshot gather_snapshot(Transport& transport, ParticleSnapshot local) {
   all.step = local.step;
   local = ParticleSnapshot();  // rank 0 needs the room for the whole
   if (transport.rank() != 0) return all;
-  std::vector<std::size_t> runs{0};
   for (Bytes& b : parts) {
     unpack_append(b, all);
     Bytes().swap(b);
-    runs.push_back(all.size());
   }
-  const std::vector<std::size_t> order = id_order(all.id, runs);
+  const std::vector<std::size_t> order = id_order(all.id);
   for_each_field(all, [&](auto& v) { permute(v, order); });
   return all;
 }
@@ -114,11 +88,8 @@ ParticleRecords gather_history_records(Transport& transport, const ParticleRecor
   ParticleRecords out;
   out.history.slots = local.history.slots;
   if (transport.rank() != 0) return out;
-  std::vector<std::size_t> order(all.size());
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all.id[a] < all.id[b]; });
-  out.id.resize(order.size());
-  for (std::size_t r = 0; r < order.size(); ++r) out.id[r] = all.id[order[r]];
+  const std::vector<std::size_t> order = id_order(all.id);
+  out.id = permuted(all.id, order);
   out.history = rows_permuted(all.history, order);
   return out;
 }

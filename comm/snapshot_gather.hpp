@@ -7,8 +7,7 @@
 namespace gs {
 
 // Collective. Rank 0 gets the whole snapshot; other ranks an empty one.
-// `local` is in ascending id order, as Simulation::snapshot() gives it (the
-// parts are then merged, not sorted again).
+// The parts are put in id order in linear time (core/id_order.hpp).
 ParticleSnapshot gather_snapshot(Transport& transport, ParticleSnapshot local);
 // Collective. The contact history of every particle on rank 0, in id order;
 // `local` is in the order of `local_ids`.

@@ -30,19 +30,7 @@ struct ParticleRecords {
   std::size_t size() const { return id.size(); }
 };
 
-// History row r of the result is row order[r] of h.
-inline HostHistory rows_permuted(const HostHistory& h, const std::vector<std::size_t>& order) {
-  const std::size_t k = std::size_t(h.slots);
-  auto rows = [&](const auto& from, auto& to) {
-    to.assign(from.empty() ? 0 : order.size() * k, {});
-    for (std::size_t r = 0; r < order.size() && !from.empty(); ++r)
-      for (std::size_t s = 0; s < k; ++s) to[r * k + s] = from[order[r] * k + s];
-  };
-  HostHistory out;
-  out.slots = h.slots;
-  rows(h.partner, out.partner);
-  for_each_history_field(h, out, [&](const char*, unsigned, const auto& from, auto& to) { rows(from, to); });
-  return out;
-}
+// History row r of the result is row order[r] of h (core/particle_records.cpp).
+HostHistory rows_permuted(const HostHistory& h, const std::vector<std::size_t>& order);
 
 }  // namespace gs

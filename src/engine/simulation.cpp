@@ -7,6 +7,7 @@
 
 #include "contact/contact_time.hpp"
 #include "contact/contact_models.hpp"
+#include "core/id_order.hpp"
 #include "core/wall_clock.hpp"
 #include "engine/insertion.hpp"
 #include "engine/particle_init.hpp"
@@ -25,11 +26,11 @@ SceneSpec without_particles(const SceneSpec& scene) {
   return settings;
 }
 
-template <class T>
-std::vector<T> permuted(const std::vector<T>& v, const std::vector<std::size_t>& order) {
-  std::vector<T> out(order.size());
-  for (std::size_t k = 0; k < order.size(); ++k) out[k] = v[order[k]];
-  return out;
+// The first n ids of the store (its owned particles), in ascending id order.
+std::vector<std::size_t> owned_id_order(const DeviceArray<ParticleId>& ids, std::size_t n) {
+  std::vector<ParticleId> id = ids.to_host();
+  id.resize(n);
+  return id_order(id);
 }
 
 }  // namespace
@@ -203,11 +204,8 @@ std::vector<MeshLoad> Simulation::mesh_loads() const {
   if (meshes_.n_triangles() == 0) return total;
   kernels_->synchronize();
   const std::vector<MeshLoad> per_particle = kernels_->forces().particle_mesh_loads(store_);
-  const std::vector<ParticleId> id = store_.id.to_host();
-  const std::size_t n = std::size_t(store_.n_owned), k = total.size();
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
+  const std::size_t k = total.size();
+  const std::vector<std::size_t> order = owned_id_order(store_.id, std::size_t(store_.n_owned));
   for (std::size_t i : order)
     for (std::size_t m = 0; m < k; ++m) {
       total[m].force += per_particle[i * k + m].force;
@@ -327,11 +325,8 @@ void Simulation::check_fault() {
 
 ParticleSnapshot Simulation::snapshot() const {
   kernels_->synchronize();
-  const std::vector<ParticleId> id = store_.id.to_host();
   const std::size_t n = std::size_t(store_.n_owned);
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
+  const std::vector<std::size_t> order = owned_id_order(store_.id, n);
   auto owned = [n](auto v) { v.resize(n); return v; };
   ParticleSnapshot s;
   s.time = time_;
@@ -363,19 +358,13 @@ std::vector<ContactMeasure> Simulation::contact_measures() const {
     throw std::logic_error("no contact pass at step " + std::to_string(step_) + " (measure_contacts_at before the run)");
   kernels_->synchronize();
   const std::vector<ContactMeasure> m = kernels_->forces().contact_measures(store_);
-  const std::vector<ParticleId> id = store_.id.to_host();
-  std::vector<std::size_t> order(m.size());
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
-  return permuted(m, order);
+  return permuted(m, owned_id_order(store_.id, m.size()));
 }
 
 ParticleRecords Simulation::wall_contact_history() const {
   kernels_->synchronize();
   const ParticleRecords r = kernels_->movement().wall_contact_history(store_);
-  std::vector<std::size_t> order(r.size());
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return r.id[a] < r.id[b]; });
+  const std::vector<std::size_t> order = id_order(r.id);
   ParticleRecords out;
   out.id = permuted(r.id, order);
   out.history = rows_permuted(r.history, order);
@@ -385,12 +374,7 @@ ParticleRecords Simulation::wall_contact_history() const {
 HostHistory Simulation::history() const {
   HostHistory h = kernels_->movement().history(store_);
   if (h.partner.empty()) return h;
-  const std::vector<ParticleId> id = store_.id.to_host();
-  const std::size_t n = std::size_t(store_.n_owned);
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
-  return rows_permuted(h, order);
+  return rows_permuted(h, owned_id_order(store_.id, std::size_t(store_.n_owned)));
 }
 
 std::size_t Simulation::device_bytes() const {

@@ -1,6 +1,7 @@
 #include "io/checkpoint.hpp"
 
 #include <cstdio>
+#include <future>
 
 #include "io/atomic_file.hpp"
 #include "io/checkpoint_insertion.hpp"
@@ -123,7 +124,9 @@ std::uint64_t checkpoint_checksum(const Checkpoint& c) {
 
 void write_checkpoint(const std::string& path, const Checkpoint& c) {
   validate(c, path);
-  const std::uint64_t checksum = checkpoint_checksum(c);
+  // The checksum (one serial pass over every byte) is summed on a thread of
+  // its own while the datasets are written; it is needed only at the end.
+  std::future<std::uint64_t> checksum = std::async(std::launch::async, [&c] { return checkpoint_checksum(c); });
   write_atomically(path, [&](const std::string& temporary) {
     h5::File f = h5::File::create(temporary);
     h5::write_string_attribute(f, "/", "kind", "grainstorm checkpoint");
@@ -140,7 +143,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
     write_walls(f, "walls", c.walls, {});
     write_decomposition(f, c);
     if (c.insertion) write_insertion(f, *c.insertion);
-    h5::write_attribute(f, "/", "checksum", checksum);
+    h5::write_attribute(f, "/", "checksum", checksum.get());
     // Last: a file without the marker was not finished.
     h5::write_attribute(f, "/", "complete", std::int32_t(1));
     f.close();

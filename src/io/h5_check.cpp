@@ -27,7 +27,8 @@ const char* short_source(const char* source) {
 }  // namespace
 
 void silence_library_errors() {
-  static const bool done = [] {
+  // Per thread: a thread-safe HDF5 keeps its error settings per thread.
+  static thread_local const bool done = [] {
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     return true;
   }();

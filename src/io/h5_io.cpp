@@ -46,22 +46,32 @@ Handle open_attribute(const File& f, const std::string& object, const std::strin
                 H5Aclose);
 }
 
+std::recursive_mutex& library_mutex() {
+  static std::recursive_mutex m;
+  return m;
+}
+
 }  // namespace
 
 File File::create(const std::string& path) {
+  Lock lock(library_mutex());
   silence_library_errors();
   Handle fapl = file_access_list(path);
-  return File(path, Handle(GS_H5_CHECK(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), path),
+  return File(std::move(lock), path, Handle(GS_H5_CHECK(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), path),
                            H5Fclose));
 }
 
 File File::open_read_only(const std::string& path) {
+  Lock lock(library_mutex());
   silence_library_errors();
   Handle fapl = file_access_list(path);
-  return File(path, Handle(GS_H5_CHECK(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path), H5Fclose));
+  return File(std::move(lock), path, Handle(GS_H5_CHECK(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path), H5Fclose));
 }
 
-void File::close() { GS_H5_CHECK(H5Fclose(handle_.release()), path_); }
+void File::close() {
+  GS_H5_CHECK(H5Fclose(handle_.release()), path_);
+  lock_.unlock();
+}
 
 void create_group(const File& f, const std::string& path) {
   Handle g(GS_H5_CHECK(H5Gcreate2(f.id(), path.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), where(f, path)),

@@ -4,6 +4,7 @@
 // Files store fixed little-endian types whatever the machine; every call is
 // checked (h5_check.hpp).
 #include <cstdint>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -67,7 +68,14 @@ class File {
   void close();
 
  private:
-  File(std::string path, Handle handle) : path_(std::move(path)), handle_(std::move(handle)) {}
+  using Lock = std::unique_lock<std::recursive_mutex>;
+  File(Lock lock, std::string path, Handle handle)
+      : lock_(std::move(lock)), path_(std::move(path)), handle_(std::move(handle)) {}
+  // Held while the file is open: one thread at a time in the HDF5 library
+  // (output is written on a thread of its own, io/background_writer.hpp,
+  // and a library built without thread safety must not be entered twice).
+  // First member: released after the handle is closed.
+  Lock lock_;
   std::string path_;
   Handle handle_;
 };

@@ -1,15 +1,17 @@
 #include "io/restart.hpp"
 
+#include <utility>
+
 namespace gs {
 
-Checkpoint make_checkpoint(const ParticleSnapshot& all, const HostHistory& history, const std::vector<Wall>& walls,
+Checkpoint make_checkpoint(ParticleSnapshot all, HostHistory history, const std::vector<Wall>& walls,
                            std::uint64_t scene_hash, int rank_count,
                            const std::optional<InsertionState>& insertion) {
   Checkpoint c;
   c.step = all.step;
   c.time = all.time;
-  c.particles = all;
-  c.history = history;
+  c.particles = std::move(all);  // moved: a checkpoint's particles are its largest part
+  c.history = std::move(history);
   c.walls = walls;
   c.scene_hash = scene_hash;
   c.rank_count = rank_count;

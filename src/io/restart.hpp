@@ -6,7 +6,7 @@
 namespace gs {
 
 // The checkpoint of a whole run: `all` and `history` hold every particle, in id order.
-Checkpoint make_checkpoint(const ParticleSnapshot& all, const HostHistory& history, const std::vector<Wall>& walls,
+Checkpoint make_checkpoint(ParticleSnapshot all, HostHistory history, const std::vector<Wall>& walls,
                            std::uint64_t scene_hash, int rank_count,
                            const std::optional<InsertionState>& insertion = std::nullopt);
 RestartState restart_state(const Checkpoint& c);

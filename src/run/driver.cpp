@@ -295,11 +295,13 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
       last_checkpoint = Clock::now();
     }
     if (stop) {
+      out.finish();
       out.log("stopped by a signal at step %lld (t = %.6g s): the run is not complete; restart with --restart\n", now,
               sim.time());
       return 3;
     }
   }
+  out.finish();  // the output is part of the run's time
   const double wall = seconds_since(t0);
   out.log("done: %lld steps, t = %.6g s, %.3g particle-steps/s\n", total, sim.time(), progress.rate());
   if (removes) out.log("particles at the end: %lld\n", particles);

@@ -4,6 +4,7 @@
 #include <cstdarg>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 
 #include "analysis/mixing.hpp"
@@ -11,6 +12,7 @@
 #include "analysis/wall_loads.hpp"
 #include "comm/rank_agreement.hpp"
 #include "comm/snapshot_gather.hpp"
+#include "core/wall_clock.hpp"
 #include "io/h5_io.hpp"
 #include "io/h5_meshes.hpp"
 #include "io/h5_snapshot.hpp"
@@ -68,12 +70,16 @@ RunOutput::RunOutput(const SceneSpec& scene, const std::string& directory, Trans
 }
 
 RunOutput::~RunOutput() {
+  // A run that ends by an exception still leaves complete files (or none).
+  const std::string error = writer_.wait();
+  if (!error.empty()) std::fprintf(stderr, "output not written: %s\n", error.c_str());
   if (log_) std::fclose(log_);
   if (timeseries_) std::fclose(timeseries_);
 }
 
 void RunOutput::log(const char* format, ...) {
   if (transport_.rank() != 0) return;
+  const std::lock_guard<std::mutex> lock(log_mutex_);  // the writer's thread logs too
   for (std::FILE* f : {stdout, log_}) {
     std::va_list args;
     va_start(args, format);
@@ -99,50 +105,76 @@ void RunOutput::written_by_rank_0(Write&& write) {
   throw_if_any_failed(transport_, error);
 }
 
+// "checkpoint: out/checkpoint_0000001000.h5 (1.96 GB written in 2.10 s, 0.93 GB/s)"
+void RunOutput::log_written(const char* what, const std::string& path, double seconds) {
+  const double gigabytes = double(std::filesystem::file_size(path)) / 1e9;
+  log("%s: %s (%.3g GB written in %.3g s, %.3g GB/s)\n", what, path.c_str(), gigabytes, seconds,
+      seconds > 0 ? gigabytes / seconds : 0.0);
+}
+
+void RunOutput::finish() {
+  std::string error;
+  if (transport_.rank() == 0) error = writer_.wait();
+  throw_if_any_failed(transport_, error);
+}
+
+void RunOutput::in_background(std::function<void()> job) {
+  if (transport_.rank() == 0) writer_.start(std::move(job));
+}
+
 void RunOutput::snapshot(const Simulation& sim) {
+  finish();  // the previous files are complete before the next host copy is made
   std::vector<double> mesh_load;  // per mesh: fx fy fz tx ty tz, summed over ranks (collective)
   for (const MeshLoad& l : sim.mesh_loads())
     mesh_load.insert(mesh_load.end(), {l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y, l.torque.z});
   if (!mesh_load.empty()) transport_.sum(mesh_load);  // every rank has the same meshes
-  const ParticleSnapshot s = gather_snapshot(transport_, sim.snapshot());
+  auto s = std::make_shared<const ParticleSnapshot>(gather_snapshot(transport_, sim.snapshot()));
   const bool need_history = keeps_history(scene_.model, scene_.effects);
   const ParticleRecords on_walls =
       need_history ? gather_history_records(transport_, sim.wall_contact_history()) : ParticleRecords();
-  written_by_rank_0([&] { write_snapshot_files(sim, s, on_walls, mesh_load); });
+  written_by_rank_0([&] { write_timeseries_row(sim, *s, on_walls, mesh_load); });
+  // The files themselves while the run steps on; the job owns its copies.
+  in_background([this, s, walls = sim.walls(), meshes = sim.meshes()] { write_snapshot_files(*s, walls, meshes); });
 }
 
-void RunOutput::write_snapshot_files(const Simulation& sim, const ParticleSnapshot& s, const ParticleRecords& on_walls,
-                                     const std::vector<double>& mesh_load) {
-  const bool need_history = keeps_history(scene_.model, scene_.effects);
-  const std::vector<std::uint16_t> contacts = need_history ? s.contacts : std::vector<std::uint16_t>(s.size(), 0);
+// On the writer's thread: the snapshot's files, then the indexes that name
+// them, so that an index never names a file that is not complete.
+void RunOutput::write_snapshot_files(const ParticleSnapshot& s, const std::vector<Wall>& walls, const MeshSet& meshes) {
   if (scene_.output.format == "csv") {
     write_particles_csv(directory_ + "/" + snapshot_file_name(s.step), s);
-  } else {
-    SnapshotMetadata m;
-    m.scene_hash = scene_hash_;
-    m.scene_path = scene_.path;
-    m.wall_names = scene_.wall_names;
-    if (fields_.has(SnapshotField::contact_count)) m.contact_count = contacts;
-    m.domain = DomainBox{scene_.domain_min, scene_.domain_max};
-    const std::string name = snapshot_h5_name(s.step);
-    write_snapshot(directory_ + "/" + name, s, fields_, sim.walls(), m);
-    series_.push_back(xdmf_entry(name, s, fields_, read_snapshot_wall_surfaces(directory_ + "/" + name)));
-    write_xdmf_series(directory_ + "/particles.xdmf", series_);
-    const MeshSet meshes = sim.meshes();
-    if (meshes.n_triangles() > 0) {
-      const std::string mesh_file = meshes_h5_name(s.step);
-      write_meshes_h5(directory_ + "/" + mesh_file, meshes, s.time, s.step);
-      mesh_series_.push_back({s.time, mesh_file, std::size_t(meshes.n_vertices()), std::size_t(meshes.n_triangles())});
-      write_mesh_xdmf(directory_ + "/meshes.xdmf", mesh_series_);
-    }
+    return;
   }
+  SnapshotMetadata m;
+  m.scene_hash = scene_hash_;
+  m.scene_path = scene_.path;
+  m.wall_names = scene_.wall_names;
+  if (fields_.has(SnapshotField::contact_count))
+    m.contact_count = keeps_history(scene_.model, scene_.effects) ? s.contacts : std::vector<std::uint16_t>(s.size(), 0);
+  m.domain = DomainBox{scene_.domain_min, scene_.domain_max};
+  const std::string name = snapshot_h5_name(s.step);
+  const auto start = Clock::now();
+  write_snapshot(directory_ + "/" + name, s, fields_, walls, m);
+  log_written("snapshot", directory_ + "/" + name, seconds_since(start));
+  series_.push_back(xdmf_entry(name, s, fields_, read_snapshot_wall_surfaces(directory_ + "/" + name)));
+  write_xdmf_series(directory_ + "/particles.xdmf", series_);
+  if (meshes.n_triangles() > 0) {
+    const std::string mesh_file = meshes_h5_name(s.step);
+    write_meshes_h5(directory_ + "/" + mesh_file, meshes, s.time, s.step);
+    mesh_series_.push_back({s.time, mesh_file, std::size_t(meshes.n_vertices()), std::size_t(meshes.n_triangles())});
+    write_mesh_xdmf(directory_ + "/meshes.xdmf", mesh_series_);
+  }
+}
+
+void RunOutput::write_timeseries_row(const Simulation& sim, const ParticleSnapshot& s, const ParticleRecords& on_walls,
+                                     const std::vector<double>& mesh_load) {
+  const bool need_history = keeps_history(scene_.model, scene_.effects);
   double translational = 0, rotational = 0, max_speed = 0;
   long long n_contacts = 0;
   for (std::size_t i = 0; i < s.size(); ++i) {
     translational += 0.5 * s.mass[i] * norm2(s.velocity[i]);
     rotational += 0.5 * s.inertia[i] * norm2(s.angular_velocity[i]);
     max_speed = std::max(max_speed, norm(s.velocity[i]));
-    n_contacts += contacts[i];
+    if (need_history) n_contacts += s.contacts[i];
   }
   std::fprintf(timeseries_, "%lld,%.17g,%zu,%.17g,%.17g,%.17g,%lld", s.step, s.time, s.size(), translational,
                rotational, max_speed, need_history ? n_contacts : -1LL);
@@ -179,6 +211,7 @@ void RunOutput::removals(Simulation& sim) {
 }
 
 void RunOutput::resume(long long step) {
+  finish();
   written_by_rank_0([&] { index_earlier_snapshots(step); });
 }
 
@@ -212,24 +245,31 @@ void RunOutput::index_earlier_snapshots(long long step) {
 }
 
 void RunOutput::checkpoint(const Simulation& sim) {
-  const ParticleSnapshot local = sim.snapshot();
-  const ParticleSnapshot s = gather_snapshot(transport_, local);
-  const HostHistory h = gather_history(transport_, local.id, sim.history());
-  const std::string path = directory_ + "/" + checkpoint_h5_name(s.step);
-  written_by_rank_0([&] {
-    const std::optional<InsertionState> insertion =
-        scene_.inlets.empty() ? std::nullopt : std::optional<InsertionState>(sim.insertion());
-    write_checkpoint(path, make_checkpoint(s, h, sim.walls(), scene_hash_, transport_.size(), insertion));
+  finish();  // the previous files are complete before the next host copy is made
+  ParticleSnapshot local = sim.snapshot();
+  HostHistory h = gather_history(transport_, local.id, sim.history());
+  ParticleSnapshot s = gather_snapshot(transport_, std::move(local));
+  if (transport_.rank() != 0) return;
+  const std::optional<InsertionState> insertion =
+      scene_.inlets.empty() ? std::nullopt : std::optional<InsertionState>(sim.insertion());
+  auto c = std::make_shared<const Checkpoint>(
+      make_checkpoint(std::move(s), std::move(h), sim.walls(), scene_hash_, transport_.size(), insertion));
+  in_background([this, c] {
+    const std::string path = directory_ + "/" + checkpoint_h5_name(c->step);
+    const auto start = Clock::now();
+    write_checkpoint(path, *c);  // under a temporary name, renamed when complete
+    const double seconds = seconds_since(start);
     checkpoints_.push_back(path);
     while (checkpoints_.size() > 2) {
       std::filesystem::remove(checkpoints_.front());
       checkpoints_.erase(checkpoints_.begin());
     }
+    log_written("checkpoint", path, seconds);
   });
-  log("checkpoint: %s\n", path.c_str());
 }
 
 void RunOutput::fault_snapshot(const Simulation& sim) {
+  finish();
   const ParticleSnapshot s = gather_snapshot(transport_, sim.snapshot());
   const std::string path = directory_ + "/" + fault_snapshot_name(s.step);
   written_by_rank_0([&] {

@@ -3,11 +3,16 @@
 // CSV), checkpoints, a time series of scalars and a log. Collective: every
 // rank calls each member; rank 0 writes, and a failure to write (a full disk)
 // stops every rank with the same RankFailure (comm/rank_agreement.hpp).
+// Snapshot and checkpoint files are written on a thread of their own
+// (io/background_writer.hpp) while the run steps on: the next snapshot,
+// checkpoint or finish() waits for them and reports their failure.
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include <functional>
 #include <memory>
+#include <mutex>
 
 #include "analysis/mixing_log.hpp"
 #include "comm/transport.hpp"
@@ -15,6 +20,7 @@
 #include "io/h5_meshes.hpp"
 #include "io/snapshot_fields.hpp"
 #include "io/xdmf_series.hpp"
+#include "io/background_writer.hpp"
 #include "run/removal_log.hpp"
 
 namespace gs {
@@ -28,6 +34,9 @@ class RunOutput {
 
   void snapshot(const Simulation& sim);    // and a time-series row
   void checkpoint(const Simulation& sim);  // keeps the newest two
+  // Waits until every snapshot and checkpoint handed over is complete on
+  // disk; a failure to write one stops every rank (RankFailure).
+  void finish();
   void mixing(const Simulation& sim);      // one row of the mixing analysis (scene.mixing)
   // The particles every rank removed at the scene's exits since the last
   // call, as rows of removed.csv (nothing when the scene has no exits).
@@ -45,10 +54,14 @@ class RunOutput {
  private:
   template <class Write>
   void written_by_rank_0(Write&& write);
+  void in_background(std::function<void()> job);
+  void log_written(const char* what, const std::string& path, double seconds);  // a file's size and speed  // rank 0 starts it on writer_ (after finish())
   void index_earlier_snapshots(long long step);  // rank 0's part of resume()
-  // Rank 0's part of snapshot(): the snapshot files and the time-series row.
-  void write_snapshot_files(const Simulation& sim, const ParticleSnapshot& s, const ParticleRecords& on_walls,
+  // Rank 0's parts of snapshot(): the time-series row, and the snapshot
+  // files (on the writer's thread).
+  void write_timeseries_row(const Simulation& sim, const ParticleSnapshot& s, const ParticleRecords& on_walls,
                             const std::vector<double>& mesh_load);
+  void write_snapshot_files(const ParticleSnapshot& s, const std::vector<Wall>& walls, const MeshSet& meshes);
 
   const SceneSpec& scene_;
   std::string directory_;
@@ -62,6 +75,9 @@ class RunOutput {
   std::FILE* timeseries_ = nullptr;
   std::unique_ptr<MixingLog> mixing_log_;
   std::unique_ptr<RemovalLog> removal_log_;
+  std::mutex log_mutex_;
+  // Last: destroyed first, so its job ends while the members it uses live.
+  BackgroundWriter writer_;
 };
 
 }  // namespace gs
