@@ -2,17 +2,18 @@
 # Inclined chute flow on a rough base at full size on the GPU (docs/VALIDATION.md,
 # "Inclined chute flow"; Silbert et al., Phys. Rev. E 64, 051302, 2001): the
 # `full` preset of tools/chute_flow.py (Silbert's stiffness k_n = 2e5 m g / d,
-# H = 30 d on 40 d x 20 d, seven angles 20-26 deg and one below the flow/no-flow
-# angle, run JOBS at a time on the one GPU, then a bisection of that angle).
+# H = 20 d on 40 d x 20 d, seven angles 20-26 deg and one at 14 deg, run JOBS
+# at a time on the one GPU, then four steps of bisection of the flow/no-flow angle).
 # Writes under OUT: chute_summary.md, chute_profiles.csv, chute_energy.csv,
 # the plots chute_profiles.png and chute_energy.png (when matplotlib is there),
 # the runs' scenes and measurement logs (runs/), and run.log with the date,
 # the GPU and the commit.
 #   bench/validation_chute_gpu.sh BUILD OUT [JOBS=4]
-# BUILD holds a CUDA build (BUILD/src/grainstorm). About 24,000 particles per
-# run, 1.2e6 steps each (300 tau at dt = t_c / 20): some 3e10 particle-steps per
-# angle, about 3 minutes in all at 1e9 particle-steps/s; CHUTE_PRESET=medium
-# runs the smaller CPU preset instead.
+# BUILD holds a CUDA build (BUILD/src/grainstorm). 16,960 particles per run
+# (16,000 flowing on 960 frozen), 4.0e5 steps each (100 tau at dt = t_c / 20):
+# 6.8e9 particle-steps per run, 8.2e10 for the 12 runs, about 1.5 minutes at
+# 1e9 particle-steps/s (a run this small may not fill the GPU: JOBS runs share
+# it). CHUTE_PRESET=medium runs the CPU preset instead.
 set -euo pipefail
 build=$(cd "$1" && pwd)
 out=$(mkdir -p "$2" && cd "$2" && pwd)
