@@ -32,6 +32,7 @@ struct Quaternion {
 enum ParticleField : unsigned {
   kEveryRun = 0u,     // not optional: every run keeps the field
   kImageCounts = 1u,  // periodic runs: crossings of each periodic face (core/periodic_box.hpp)
+  kFrozenFlags = 2u,  // runs with frozen particle sets: 1 for a particle that never moves
 };
 
 // X(name, type, kept): the state of one particle, in the order messages,
@@ -49,7 +50,8 @@ enum ParticleField : unsigned {
   X(velocity, Vec3d, kEveryRun)            \
   X(angular_velocity, Vec3d, kEveryRun)    \
   X(orientation, Quaternion, kEveryRun)    \
-  X(image, ImageCount, kImageCounts)
+  X(image, ImageCount, kImageCounts)      \
+  X(frozen, std::uint8_t, kFrozenFlags)
 
 // The value of a history field in precision Real.
 template <class Real>

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "engine/particle_init.hpp"
 #include "scene/counter_random.hpp"
@@ -131,8 +132,44 @@ InletBatch inlet_batch(const InletSpec& in, std::size_t which, const InletState&
   return b;
 }
 
+namespace {
+
+// The shifts by whole box lengths that give a sphere's images: each wrapping
+// axis by -L, 0 or +L (all nine of a chute periodic in x and y), the zero
+// shift first; only the zero shift when nothing wraps.
+std::vector<Vec3d> image_shifts(const PeriodicBox& box) {
+  std::vector<Vec3d> shifts{Vec3d()};
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!box.wraps(axis)) continue;
+    const double l = component(box.length, axis);
+    const std::size_t n = shifts.size();
+    for (int sign : {-1, 1})
+      for (std::size_t k = 0; k < n; ++k) {
+        Vec3d s = shifts[k];
+        (axis == 0 ? s.x : axis == 1 ? s.y : s.z) = sign * l;
+        shifts.push_back(s);
+      }
+  }
+  return shifts;
+}
+
+// f(image) for each periodic image (centre + shift) that comes within `reach`
+// of the box [lo, hi]: the ones that can touch a sphere centred in it.
+template <class F>
+void for_each_image_near(const std::vector<Vec3d>& shifts, const Vec3d& centre, double reach, const Vec3d& lo,
+                         const Vec3d& hi, F&& f) {
+  for (const Vec3d& shift : shifts) {
+    const Vec3d c = centre + shift;
+    if (c.x + reach > lo.x && c.x - reach < hi.x && c.y + reach > lo.y && c.y - reach < hi.y &&
+        c.z + reach > lo.z && c.z - reach < hi.z)
+      f(c);
+  }
+}
+
+}  // namespace
+
 void mark_blocked(const InletBatch& b, const std::vector<Vec3d>& centre, const std::vector<float>& radius,
-                  std::vector<double>& blocked) {
+                  const PeriodicBox& box, std::vector<double>& blocked) {
   blocked.resize(b.candidates.size(), 0.0);
   if (b.candidates.empty() || centre.empty()) return;
   // Only spheres that can reach a candidate matter: those near the candidates' box.
@@ -146,20 +183,21 @@ void mark_blocked(const InletBatch& b, const std::vector<Vec3d>& centre, const s
     r_max = std::max(r_max, p.radius);
     r_sum += p.radius;
   }
-  std::vector<std::size_t> near;
+  // A sphere near a periodic face reaches candidates near the other face
+  // through its image: each image is tested as a sphere of its own. The
+  // images are the same on every rank, so the marks stay rank-independent.
+  const std::vector<Vec3d> shifts = image_shifts(box);
+  std::vector<std::pair<Vec3d, double>> near;
   double reach = 0;
-  for (std::size_t i = 0; i < centre.size(); ++i) {
-    const double r = double(radius[i]) + r_max;
-    const Vec3d& c = centre[i];
-    if (c.x + r > lo.x && c.x - r < hi.x && c.y + r > lo.y && c.y - r < hi.y && c.z + r > lo.z && c.z - r < hi.z) {
-      near.push_back(i);
+  for (std::size_t i = 0; i < centre.size(); ++i)
+    for_each_image_near(shifts, centre[i], double(radius[i]) + r_max, lo, hi, [&](const Vec3d& c) {
+      near.emplace_back(c, double(radius[i]));
       reach = std::max(reach, double(radius[i]));
-    }
-  }
+    });
   if (near.empty()) return;
   const Vec3d pad(reach + r_max, reach + r_max, reach + r_max);
   SphereGrid grid(lo - pad, hi + pad, 2 * r_sum / double(b.pending.size()), near.size());
-  for (std::size_t i : near) grid.insert(centre[i], double(radius[i]));
+  for (const auto& [c, r] : near) grid.insert(c, r);
   for (std::size_t k = 0; k < b.pending.size(); ++k)
     for (int a = 0; a < b.attempts; ++a) {
       const std::size_t c = k * std::size_t(b.attempts) + std::size_t(a);

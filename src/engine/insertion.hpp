@@ -12,6 +12,7 @@
 
 #include "core/insertion_state.hpp"
 #include "core/materials.hpp"
+#include "core/periodic_box.hpp"
 #include "scene/inlet_spec.hpp"
 #include "walls/mesh.hpp"
 #include "walls/wall.hpp"
@@ -39,14 +40,19 @@ InletBatch inlet_batch(const InletSpec& inlet, std::size_t which, const InletSta
                        const std::vector<MaterialSpec>& materials);
 
 // Adds 1 to blocked[c] for each candidate c that overlaps one of the spheres
-// (centre, radius): this rank's share of the marks.
+// (centre, radius) or, on the axes of `box` that wrap, one of their periodic
+// images (a sphere just across a periodic face touches the candidates near
+// the other face): this rank's share of the marks.
 void mark_blocked(const InletBatch& batch, const std::vector<Vec3d>& centre, const std::vector<float>& radius,
-                  std::vector<double>& blocked);
+                  const PeriodicBox& box, std::vector<double>& blocked);
 
 // The accepted particles of the batch, in sequence order: each pending
 // particle takes its first candidate that no rank marked and that overlaps no
 // wall, no mesh and no particle accepted before it in this batch. Stops at
-// the first particle without such a candidate (the rest stay owed).
+// the first particle without such a candidate (the rest stay owed). No
+// periodic images are needed here: a batch's spheres lie wholly inside the
+// region, which lies inside the domain, so two of them never meet through a
+// periodic face (an existing particle may straddle one: mark_blocked).
 // `meshes` must hold their vertices in the current pose.
 std::vector<ParticleInit> accept_candidates(const InletBatch& batch, const std::vector<double>& blocked,
                                             const std::vector<Wall>& walls, const MeshSet& meshes);

@@ -35,6 +35,7 @@ inline void set_particle(ParticleRecords& r, std::size_t k, const ParticleInit& 
   r.angular_velocity[k] = state(p.angular_velocity);
   r.orientation[k] = Quaternion{1, 0, 0, 0};
   if (!r.image.empty()) r.image[k] = ImageCount{};
+  if (!r.frozen.empty()) r.frozen[k] = p.frozen;
 }
 
 }  // namespace gs

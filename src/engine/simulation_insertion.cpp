@@ -44,7 +44,7 @@ void Simulation::insert_due() {
     }
     copied = true;
     std::vector<double> blocked;
-    mark_blocked(batch, centre, radius, blocked);
+    mark_blocked(batch, centre, radius, periodic_box(scene_), blocked);
     if (exchange_) exchange_->sum(blocked);
     const std::vector<ParticleInit> accepted = accept_candidates(batch, blocked, walls_, posed);
     // Every rank finds this alike, so all of them stop here together.

@@ -52,7 +52,9 @@ GS_HD GS_INLINE void advance_orientation(Quaternion& q, const Vec3d& omega, doub
   q = Quaternion{r.w * inv, r.x * inv, r.y * inv, r.z * inv};
 }
 
-// Half kick of velocities by the forces of the current positions.
+// Half kick of velocities by the forces of the current positions. A frozen
+// particle (docs/SCENES.md, `frozen`) is not integrated: it stays at rest
+// where it was created, whatever pushes on it, and its contacts see it so.
 template <class Real>
 struct HalfKick {
   Vec3d* velocity;
@@ -64,8 +66,12 @@ struct HalfKick {
   double half_dt;
   Vec3d gravity;
   bool fp32_state;
+  const std::uint8_t* frozen = nullptr;  // null unless the run has frozen particles
+
+  GS_HD bool is_frozen(Index i) const { return frozen && frozen[i] != 0; }
 
   GS_HD void operator()(Index i) const {
+    if (is_frozen(i)) return;
     velocity[i] += (Vec3d(force[i]) * (1.0 / double(mass[i])) + gravity) * half_dt;
     if (torque) angular_velocity[i] += Vec3d(torque[i]) * (half_dt / double(inertia[i]));
     if (fp32_state) {
@@ -92,6 +98,7 @@ struct KickDrift {
   Fault* fault;
 
   GS_HD void operator()(Index i) const {
+    if (kick.is_frozen(i)) return;
     kick(i);
     const Vec3d v = kick.velocity[i];
     const Vec3d step = v * p.dt;

@@ -26,6 +26,7 @@ ParticleInit make_particle(const ParticleTemplate& t, std::size_t id, const Vec3
   p.velocity = t.velocity;
   p.angular_velocity = t.angular_velocity;
   p.marker = t.marker;
+  p.frozen = std::uint8_t(t.frozen);
   return p;
 }
 

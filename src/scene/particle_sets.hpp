@@ -18,6 +18,7 @@ struct ParticleInit {
   double radius = 0;
   Vec3d position, velocity, angular_velocity;
   std::uint8_t marker = 0;
+  std::uint8_t frozen = 0;  // 1: never moves, still touches (docs/SCENES.md, `frozen`)
 };
 
 // Properties shared by every particle of one generated set.
@@ -26,6 +27,7 @@ struct ParticleTemplate {
   Vec3d velocity;
   Vec3d angular_velocity;
   std::uint8_t marker = 0;
+  bool frozen = false;
 };
 
 // Simple cubic lattice: centres min + spacing * (i, j, k) that lie inside [min, max].

@@ -84,6 +84,7 @@ struct SceneSettings {
   bool has_exits() const { return !outlets.empty() || open_faces != 0; }  // particles can leave the run
   std::vector<InletSpec> inlets;       // particles inserted during the run (engine/insertion.hpp)
   MeasurementsSpec measurements;     // flows and averages during the run (docs/MEASUREMENTS.md)
+  bool frozen_particles = false;     // some particle set is `frozen` (a scene built in code sets it too)
   // "<file>:<line>: <key path>: <what>" for each value the scene sets that the
   // run ignores (a parameter of an effect that is off); check and run print them.
   std::vector<std::string> warnings;
@@ -94,7 +95,9 @@ inline PeriodicBox periodic_box(const SceneSettings& s) {
   return make_periodic_box(s.periodic_axes, s.domain_min, s.domain_max);
 }
 // The optional particle fields a run of the scene keeps (ParticleField bits).
-inline unsigned particle_fields_kept(const SceneSettings& s) { return s.periodic_axes != 0 ? kImageCounts : 0u; }
+inline unsigned particle_fields_kept(const SceneSettings& s) {
+  return (s.periodic_axes != 0 ? kImageCounts : 0u) | (s.frozen_particles ? kFrozenFlags : 0u);
+}
 
 struct SceneSpec : SceneSettings {
   // The initial particles, in kinds of sets whose ids interleave in the

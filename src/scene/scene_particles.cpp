@@ -21,6 +21,20 @@ ParticleTemplate parse_template(const SceneSpec& s, const Map& m) {
   return t;
 }
 
+// `frozen: true` on a particle set (not an inlet): its particles never move
+// but push on those that touch them (a rough base). A frozen particle starts
+// and stays at rest, so a velocity beside it is a slip.
+static ParticleTemplate parse_set_template(SceneSpec& s, const Map& m) {
+  ParticleTemplate t = parse_template(s, m);
+  if (!m.has("frozen") || !boolean(m.get("frozen"))) return t;
+  for (const char* key : {"velocity", "angular_velocity"})
+    if (m.has(key) && norm2(vec3(m.get(key))) > 0)
+      fail(m.get(key), std::string("a frozen particle never moves: its ") + key + " must be zero");
+  t.frozen = true;
+  s.frozen_particles = true;
+  return t;
+}
+
 FillRegion parse_region(const Val& v) {
   const Map m(v, {"box", "cylinder"});
   FillRegion r;
@@ -98,9 +112,9 @@ void generate(const Val& where, F&& f) {
 }
 
 void add_lattice(SceneSpec& s, const Val& v) {
-  const Map m(v, {"material", "radius", "min", "max", "spacing", "velocity", "angular_velocity", "marker"});
+  const Map m(v, {"material", "radius", "min", "max", "spacing", "velocity", "angular_velocity", "marker", "frozen"});
   LatticeSpec spec;
-  spec.tmpl = parse_template(s, m);
+  spec.tmpl = parse_set_template(s, m);
   spec.radius = positive(m.get("radius"));
   spec.min = vec3(m.get("min"));
   spec.max = vec3(m.get("max"));
@@ -120,9 +134,9 @@ void add_lattice(SceneSpec& s, const Val& v) {
 
 void add_random_fill(SceneSpec& s, const Val& v) {
   const Map m(v, {"material", "region", "count", "radius", "diameter_distribution", "fractions_by", "seed",
-                  "velocity", "angular_velocity", "marker"});
+                  "velocity", "angular_velocity", "marker", "frozen"});
   RandomFillSpec spec;
-  spec.tmpl = parse_template(s, m);
+  spec.tmpl = parse_set_template(s, m);
   spec.region = parse_region(m.get("region"));
   spec.count = std::size_t(integer(m.get("count"), 1, kMaxParticleId));
   spec.size = parse_sizes(m);
@@ -134,8 +148,8 @@ void add_random_fill(SceneSpec& s, const Val& v) {
 
 void add_list(SceneSpec& s, const Val& v, std::vector<Origin>& origins) {
   for_each_item(v, [&](const Val& item, std::size_t) {
-    const Map m(item, {"position", "radius", "material", "velocity", "angular_velocity", "marker"});
-    const ParticleTemplate t = parse_template(s, m);
+    const Map m(item, {"position", "radius", "material", "velocity", "angular_velocity", "marker", "frozen"});
+    const ParticleTemplate t = parse_set_template(s, m);
     const std::size_t id = particle_count(s);
     if (id > kMaxParticleId) fail(item, "too many particles for 32-bit ids");
     ParticleInit p;
@@ -146,6 +160,7 @@ void add_list(SceneSpec& s, const Val& v, std::vector<Origin>& origins) {
     p.velocity = t.velocity;
     p.angular_velocity = t.angular_velocity;
     p.marker = t.marker;
+    p.frozen = std::uint8_t(t.frozen);
     origins.push_back({id, item});
     s.particles.push_back(p);
   });

@@ -154,26 +154,8 @@ void check_periodic_box(const Map& top, const SceneSpec& s) {
                       ", shorter than two largest particle diameters (2 x " + str(diameter) +
                       " m): a particle could touch two images of the same partner; lengthen the domain along " + a);
   }
-  // An inlet's candidates are checked against the particles without
-  // wrapping (engine/insertion.hpp): its region keeps a diameter clear too.
-  for (std::size_t k = 0; k < s.inlets.size(); ++k) {
-    Vec3d lo, hi;
-    region_bounds(s.inlets[k].region, lo, hi);
-    for (int axis = 0; axis < 3; ++axis) {
-      if (!((s.periodic_axes >> axis) & 1u)) continue;
-      if (!(component(lo, axis) >= component(s.domain_min, axis) + diameter &&
-            component(hi, axis) <= component(s.domain_max, axis) - diameter)) {
-        std::size_t i = 0;
-        for_each_item(top.get("inlets"), [&](const Val& item, std::size_t) {
-          if (i++ == k)
-            fail(item, "inlet " + quoted(s.inlets[k].name) + " must keep a largest particle diameter (" +
-                           str(diameter) + " m) clear of the periodic faces along " + kAxisNames[axis] +
-                           " (its region spans " + str(component(lo, axis)) + " to " + str(component(hi, axis)) +
-                           " m): insertion checks overlaps without wrapping");
-        });
-      }
-    }
-  }
+  // Inlets may reach the periodic faces: insertion checks a candidate
+  // against the particles' periodic images (engine/insertion.hpp).
   // Plates and cones (one wall per `plate` or `cone` entry, in order) are
   // touched at the particle's own position too: a largest diameter clear.
   if (top.has("walls")) {
