@@ -72,6 +72,12 @@ double kinetic_energy(const ParticleSnapshot& s) {
   return e;
 }
 
+double translational_kinetic_energy(const ParticleSnapshot& s) {
+  double e = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) e += 0.5 * s.mass[i] * norm2(s.velocity[i]);
+  return e;
+}
+
 double stored_sphere_mass(double radius, double density) {
   return double(float(4.0 / 3.0 * M_PI * radius * radius * radius * density));
 }

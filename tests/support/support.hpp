@@ -20,6 +20,7 @@ ParticleInit particle(ParticleId id, double radius, Vec3d position, Vec3d veloci
 Wall plane_wall(Vec3d point, Vec3d normal, int material = 0);
 
 double kinetic_energy(const ParticleSnapshot& s);  // translational + rotational
+double translational_kinetic_energy(const ParticleSnapshot& s);
 
 // Mass of a sphere as the particle store keeps it (fp32, like radius and inertia).
 double stored_sphere_mass(double radius, double density);
