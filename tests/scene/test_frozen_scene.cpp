@@ -40,7 +40,13 @@ TEST(FrozenScene, ARunWithoutFrozenSetsKeepsNoField) {
   const SceneSpec s = parse_scene(edited(edited(kScene, ", frozen: true}", "}"), ", frozen: true}", "}"), "s.yaml");
   EXPECT_FALSE(s.frozen_particles);
   EXPECT_EQ(particle_fields_kept(s), 0u);
-  EXPECT_FALSE(parse_scene(edited(kScene, "frozen: true}", "frozen: false}"), "s.yaml").particles.front().frozen);
+  // `frozen: false` on the lattice: its particles (ids 0-3) move.
+  const SceneSpec unfrozen = parse_scene(edited(kScene, "frozen: true}", "frozen: false}"), "s.yaml");
+  for_each_particle(unfrozen, [&](const ParticleInit& p) {
+    if (p.id < 4) {
+      EXPECT_FALSE(p.frozen) << "particle " << p.id;
+    }
+  });
 }
 
 TEST(FrozenScene, RefusesMotionAndInlets) {
