@@ -52,12 +52,12 @@ class ForceComputer final : public ForceComputation {
 
   void compute(ParticleStore& s, double dt, long long step) override {
     meshes_.reserve(std::size_t(s.size()));
-    with_candidates(s, step, [&](const auto& candidates) { Exec::parallel_for(s.n_owned, kernel(s, candidates, dt, step)); });
+    with_candidates(s, [&](const auto& candidates) { Exec::parallel_for(s.n_owned, kernel(s, candidates, dt, step)); });
   }
 
   void measure_contacts(ParticleStore& s, long long step) override {
     measures_.resize(std::size_t(s.n_owned));
-    with_candidates(s, step, [&](const auto& candidates) {
+    with_candidates(s, [&](const auto& candidates) {
       using Candidates = std::decay_t<decltype(candidates)>;
       Exec::parallel_for(s.n_owned, ContactMeasureKernel<Real, Model, Effects, Candidates>{
                                         kernel(s, candidates, 0.0, step), measures_.data()});
@@ -87,7 +87,7 @@ class ForceComputer final : public ForceComputation {
   // after each rebuild of its halo), or the cells where the backend keeps no
   // list.
   template <class F>
-  void with_candidates(ParticleStore& s, long long /*step*/, F&& f) {
+  void with_candidates(ParticleStore& s, F&& f) {
     if constexpr (Exec::verlet_list) {
       if (!neighbours_.list_valid(s)) throw std::logic_error("forces before the Verlet list was built");
       f(neighbours_.list_candidates());

@@ -28,9 +28,10 @@ class NeighbourFinder final : public NeighbourSearch {
       built_at_ = s.revision;
     }
   }
-  bool stale(const ParticleStore& s) const override {
+  bool stale(const ParticleStore& s, bool check_moves) const override {
     if constexpr (Exec::verlet_list)
-      return !list_valid(s) || verlet_list_stale<Exec>(verlet_, s.position.data(), s.n_owned, s.size());
+      return !list_valid(s) ||
+             (check_moves && verlet_list_stale<Exec>(verlet_, s.position.data(), s.n_owned, s.size()));
     return true;
   }
   std::size_t bytes() const override { return cells_.bytes() + verlet_.bytes(); }

@@ -25,9 +25,11 @@ class NeighbourSearch {
   virtual void build(const ParticleStore& s, const CellGrid& grid, double skin) = 0;
   // Whether build() must run before the next force computation: always
   // without a Verlet list; with one, when the store has changed since the
-  // build (ParticleStore::revision) or a particle has moved more than half
-  // the skin.
-  virtual bool stale(const ParticleStore& s) const = 0;
+  // build (ParticleStore::revision) or, where `check_moves`, a particle has
+  // moved more than half the skin. Ranks pass false: the halo's vote has
+  // then already rebuilt the halo, and so changed the store, when a
+  // particle moved half of its skin, which is never wider than the list's.
+  virtual bool stale(const ParticleStore& s, bool check_moves) const = 0;
   virtual std::size_t bytes() const = 0;  // cell and Verlet lists
 };
 

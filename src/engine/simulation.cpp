@@ -235,11 +235,12 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
     timings_.integrate += phase_seconds(t0);
     if (exchange_) exchange_particles();
 
-    // A Verlet list is kept while it covers every contact (it is rebuilt,
-    // with ranks, after every rebuild of the halo); without one the cell list
-    // is built every step. Memory is re-sorted only at a rebuild.
+    // A Verlet list is kept while it covers every contact; with ranks it is
+    // rebuilt after every rebuild of the halo, whose vote has already
+    // measured the moves (no second pass over the positions). Without a list
+    // the cell list is built every step. Memory is re-sorted only at a rebuild.
     t0 = Clock::now();
-    if (kernels_->neighbours().stale(store_)) {
+    if (kernels_->neighbours().stale(store_, !exchange_)) {
       if (!exchange_) reorder_if_due();
       rebuild_neighbours();
       ++neighbour_builds_;

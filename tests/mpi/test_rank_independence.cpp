@@ -132,8 +132,9 @@ void expect_rank_independent(const SceneSpec& scene, long long steps, RunOptions
   std::printf("[ digest   ] %s: 0x%016" PRIx64 "\n", ::testing::UnitTest::GetInstance()->current_test_info()->name(),
               state_digest(ref, one.history()));
   ASSERT_EQ(all.size(), ref.size()) << "particles lost or duplicated";
-  if (scene.inlets.empty())
+  if (scene.inlets.empty()) {
     ASSERT_EQ(all.size() + removed.size(), particle_count(scene)) << "particles lost or duplicated";
+  }
   EXPECT_TRUE(same_removals(removed, ref_removed)) << removed.size() << " removed on " << world().size()
                                                    << " ranks, " << ref_removed.size() << " on one";
   if (scene.has_exits()) {
@@ -424,7 +425,9 @@ TEST(RankIndependence, LatticeSetUpHoldsOnlyEachRanksOwn) {
   const auto exchange = split_scene(s, world());
   Simulation many(s, RunOptions{}, exchange);
   const ParticleSnapshot mine = many.snapshot();
-  if (world().size() > 1) EXPECT_LT(mine.size(), n) << "a rank holds every particle";
+  if (world().size() > 1) {
+    EXPECT_LT(mine.size(), n) << "a rank holds every particle";
+  }
   for (const Vec3d& x : mine.position) EXPECT_TRUE(exchange->owns(x));
   many.run(20);
   const ParticleSnapshot all = gather_snapshot(world(), many.snapshot());
