@@ -26,6 +26,7 @@
 // to size the list. Its staleness is one flag the device sets and the host
 // reads after the step's kick-drift (CudaExec::any): one wait for the device
 // per step, a few microseconds against the milliseconds of a large bed's step.
+// Ranks skip it: the halo's vote has measured the same moves.
 #include <cstdint>
 #include <vector>
 
