@@ -50,8 +50,9 @@ def scene(g, kind, every, t_end):
     """The scene text of one run (a mesh flow reads orifice.stl beside it)."""
     g = dict(g)
     # Room above for the random fill: loose (about 30 %) over twice the fill height.
-    g["inlet_top"] = 2.2 * g["h_fill"]
-    g["hi"] = [g["hi"][0], g["hi"][1], g["inlet_top"] + silo.D]
+    g["top"] = g["inlet_top"] = 2.2 * g["h_fill"]
+    g["hi"] = [g["hi"][0], g["hi"][1], g["top"] + silo.D]
+    g["t_feed"] = None   # the inlet feeds from the start, as in the validation's set-up
     if kind == "static":
         g["t_open"] = None
     r_max = silo.D / 2 * (1 + silo.SPREAD)
