@@ -56,9 +56,8 @@ run_tool "$python" "$root/tools/chute_flow.py" "$binary" --preset "$preset" "${e
   > "$out/chute_table.txt" 2> >(tee "$out/chute_progress.log" >&2)
 status=$?
 {
-  cat "$out/chute_table.txt"
-  echo
-  [[ -f $out/chute_summary.md ]] && cat "$out/chute_summary.md"
+  # The summary (written when the runs were analysed), else what the tool printed.
+  if [[ -f $out/chute_summary.md ]]; then cat "$out/chute_summary.md"; else cat "$out/chute_table.txt"; fi
   echo
   echo "tools/chute_flow.py exit status $status after $(( $(date +%s) - t_start )) s of the ${budget} s budget"
 } >> "$results"

@@ -456,6 +456,7 @@ def main():
         if not a.work:
             shutil.rmtree(work, ignore_errors=True)
     print("| theta | end | E_kin | E drift | h | bulk phi | u_surf | A | res Bagnold | res linear | res plug | t [tau] | wall s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in sorted(results, key=lambda r: r["theta"]):
         print(describe(r))
     if bracket_result:

@@ -463,9 +463,10 @@ def main():
                 try:
                     results.append((j, f.result()))
                 except (RuntimeError, IndexError, OSError) as e:
-                    if r is None or r.status != "stopped":
+                    if r is None or r.status not in ("stopped", "not started"):
                         raise
-                    print("%s %s: stopped by the budget before its measuring window (%s)" % (j[0], case_name(*j[1:]), e))
+                    print("%s %s: %s by the budget before its measuring window (%s)" % (
+                        j[0], case_name(*j[1:]), r.status, e))
     except (RuntimeError, OSError) as e:
         sys.stderr.write("drum: %s\n" % e)
         return 2
