@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # What the silo's processes (inlet, outlet) and each kind of measurement cost
 # per particle-step on the GPU (issue 20, "Cost"; bench/process_cost.py says
-# which runs): nine runs of the full silo (~69k spheres, D0 = 10 d), one
-# after the other, each 0.5 s simulated (29,800 steps of 16.8 us: 0.3 s
-# settling behind the gate, 0.2 s of discharge), so ~2e9 particle-steps per run.
+# which runs): nine runs of the full silo (46 d wide, ~106k spheres, D0 =
+# 10 d), one after the other, each 0.5 s simulated (29,800 steps of 16.8 us:
+# 0.3 s settling behind the gate, 0.2 s of discharge), ~3.2e9 particle-steps a run.
 #   [BUDGET_S=170] bench/process_cost.sh BUILD_DIR OUT [extra arguments of process_cost.py, e.g. --backend cpu --variant smoke]
 # Estimate (not measured: no GPU where this was written): on one H200 a
-# 70k-sphere scene steps at ~0.3-0.5 ms (docs/PERFORMANCE.md: 76.8k spheres,
-# 0.49 ms), so 9-15 s a run and ~2-3 minutes for the nine; a run that would
-# end past BUDGET_S is skipped (named in the table). CPU check of the script:
+# scene of this size steps at ~0.4-0.6 ms (docs/PERFORMANCE.md: 76.8k
+# spheres, 0.49 ms), so 12-18 s a run with its set-up and about 2-2.7
+# minutes for the nine; a run that would end past BUDGET_S (judged by the
+# longest so far) is skipped and named in the table. CPU check of the script:
 #   bench/process_cost.sh build-cpu /tmp/pc --backend cpu --variant smoke --d0 5 --settle 0.2 --discharge 0.1
 # Writes OUT/process_cost.md (machine, commit, the table for docs/PERFORMANCE.md);
 # the runs stay in RUNS (default /tmp/process_cost_runs).

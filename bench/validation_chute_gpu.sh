@@ -20,6 +20,8 @@
 # over the time it reached (the table's "t reached"; its profile from the
 # samples after 100 tau, none before). A missing BUILD_DIR/src/grainstorm is
 # built first (on the budget's time).
+# MPS=1 starts a private CUDA MPS daemon for the runs (quit at the end), so
+# that their kernels can run at once rather than in time slices.
 #
 # Estimate (not measured: no GPU where this was written). dt = 21.9 us
 # (t_c / 10; tau = 14.3 ms), 130,689 steps per run of 4,240 particles:

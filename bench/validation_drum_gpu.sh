@@ -17,6 +17,8 @@
 # step) and measured over the snapshots of its window written so far (at
 # least 3), the table saying how many of the planned ones. A missing
 # BUILD_DIR/src/grainstorm is built first (on the budget's time).
+# MPS=1 starts a private CUDA MPS daemon for the runs (quit at the end), so
+# that their kernels can run at once rather than in time slices.
 #
 # Estimate (not measured: no GPU where this was written). dt = 27.8 us (0.1
 # of the contact time at 500 N/m); the cases take 36k (Fr 3) to 155k
