@@ -22,8 +22,9 @@ each angle the tool writes a scene, runs it, and reads the layer averages
     plug (constant) profiles for comparison;
   * the bulk solid fraction (mean over the middle half of the layer);
   * whether the layer stops (kinetic energy per mass below STOPPED g d at
-    the end) or flows; the flow/no-flow angle by bisection between an angle
-    that stops and one that flows.
+    the end) or flows; the flow/no-flow angle between the highest angle that
+    stops and the lowest that flows (narrowed by bisection for a preset with
+    `bracket` steps).
 
 Each run starts from a pour in simple shear (START_SHEAR_RATE), so that a
 Bagnold profile at the end is the flow's own, not the start's.
@@ -31,8 +32,11 @@ Bagnold profile at the end is the flow's own, not the start's.
 Presets: `ci` (the CTest validation_chute: one flowing and one stopping run
 of 1651 particles, asserting a steady flow with the Bagnold shape at 24 deg
 and a stop at 14 deg), `medium` (the same layer at six angles, the CPU
-numbers in docs/VALIDATION.md), `full` (the GPU benchmark at Silbert's
-stiffness, bench/validation_chute_gpu.sh). --reuse re-reads runs kept in
+numbers in docs/VALIDATION.md), `full` (the GPU run of
+bench/validation_chute_gpu.sh: Silbert's box and H = 20, contacts 10x softer
+than Silbert's, ten angles side by side, 200 tau). --budget-s stops the runs
+still going after that many seconds (SIGTERM) and analyses each over the
+time it reached. --reuse re-reads runs kept in
 --work (a run of the same preset and angle) instead of running them. Tables (Markdown and CSV) and,
 where matplotlib is installed, plots go to --out.
 
