@@ -10,6 +10,7 @@ grainstorm stop at the next step, flush its measurement logs and exit 3
 killed. What a stopped run wrote up to then stays there for a partial
 analysis. Standard library only.
 """
+import concurrent.futures
 import os
 import re
 import signal
@@ -144,8 +145,9 @@ def print_plan(label, binary, named_scenes):
     """Prints each run's size (particles at the start, steps) and the total
     particle-steps: what the budget has to hold."""
     total = 0.0
-    for name, scene in named_scenes:
-        n, steps = check_plan(binary, scene)
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, len(named_scenes))) as pool:
+        plans = list(pool.map(lambda ns: check_plan(binary, ns[1]), named_scenes))
+    for (name, _), (n, steps) in zip(named_scenes, plans):
         total += float(n) * steps
         say(label, "plan: %s: %d particles at the start, %d steps" % (name, n, steps))
     say(label, "plan: %.3g particle-steps in all" % total)

@@ -442,6 +442,7 @@ def main():
     if not a.binary:
         ap.error("BINARY is required")
     v = VARIANTS[a.variant]
+    deadline = budget_runs.deadline_from(a.budget_s)   # the plan's checks count too
     work = a.keep or tempfile.mkdtemp(prefix="drum_")
     jobs = [(b, fr, mu_r) for b in a.backends.split(",") for fr, mu_r in v["cases"]]
     # Longest first: with a budget, the long runs set the wall time.
@@ -451,7 +452,7 @@ def main():
         runs = [prepare_case(a.binary, b, v, fr, mu_r, work, a.reuse) for b, fr, mu_r in jobs]
         if a.budget_s:
             budget_runs.print_plan("drum", a.binary, [(r.name, r.cmd[2]) for r in runs if r])
-        budget_runs.run_all([r for r in runs if r], budget_runs.deadline_from(a.budget_s), jobs=max(1, a.jobs),
+        budget_runs.run_all([r for r in runs if r], deadline, jobs=max(1, a.jobs),
                             label="drum")
         failed = [r for r in runs if r and r.status == "failed"]
         if failed:
