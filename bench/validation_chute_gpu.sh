@@ -63,6 +63,12 @@ status=$?
   echo
   echo "tools/chute_flow.py exit status $status after $(( $(date +%s) - t_start )) s of the ${budget} s budget"
 } >> "$results"
+{
+  echo
+  echo "The runs' sizes and ends (from $case_name's progress log):"
+  echo
+  grep -E ": plan: |: (done|stopped|failed|not started)" "$out/${case_name}_progress.log" | sed 's/^/    /'
+} >> "$results"
 validation_log "results in $results"
 cat "$results"
 exit "$status"

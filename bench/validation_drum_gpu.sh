@@ -51,6 +51,12 @@ run_tool "$python" "$root/tools/drum.py" "$binary" --variant "$size" --backends 
 status=$?
 cat "$out/drum_table.txt" >> "$results"
 echo "tools/drum.py exit status $status after $(( $(date +%s) - t_start )) s of the ${budget} s budget" >> "$results"
+{
+  echo
+  echo "The runs' sizes and ends (from $case_name's progress log):"
+  echo
+  grep -E ": plan: |: (done|stopped|failed|not started)" "$out/${case_name}_progress.log" | sed 's/^/    /'
+} >> "$results"
 validation_log "results in $results"
 cat "$results"
 exit "$status"

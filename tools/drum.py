@@ -406,6 +406,10 @@ def check_ci(results):
     for (backend, fr, mu_r), m in results:
         by.setdefault(backend, {})[(fr, mu_r)] = m
     for backend, ms in by.items():
+        missing = [k for k in ((0.01, 0.0), (0.01, 0.3), (3.0, 0.0)) if k not in ms]
+        if missing:   # a run a budget stopped before its measuring window
+            check(False, "%s: no measurement of the case(s) Fr, rolling_friction = %s" % (backend, missing))
+            continue
         plain, rolling, fast = ms[(0.01, 0.0)], ms[(0.01, 0.3)], ms[(3.0, 0.0)]
         lo, hi = CI_ANGLE_BOUNDS
         check(lo <= plain["angle"] <= hi,
