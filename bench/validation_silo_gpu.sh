@@ -36,8 +36,11 @@
 # Writes OUT/silo_results.md (machine, commit, plan, table and fit: paste into
 # docs/VALIDATION.md), OUT/silo_results.png (mass through the orifice against
 # time, W against D0 with the Beverloo band and the fit), OUT/silo_progress.log
-# (the timestamped progress lines, also on stderr) and OUT/env.txt; the runs
-# (CSV snapshots, ~60 MB) stay in RUNS (default /tmp/silo_full_runs).
+# (the timestamped progress lines, also on stderr), OUT/env.txt and OUT/runs
+# (each run's logs without its snapshots, to analyse and plot again
+# elsewhere: tools/silo_beverloo.py --variant full --analyse OUT/runs --plot
+# FILE; the overlaps need the snapshots); the runs themselves (CSV snapshots,
+# ~60 MB) stay in RUNS (default /tmp/silo_full_runs).
 set -uo pipefail
 [[ $# -ge 2 ]] || { echo "usage: $0 BUILD_DIR OUT" >&2; exit 2; }
 source "$(dirname "$0")/validation_common.sh"
@@ -53,7 +56,18 @@ run_tool "$python" "$root/tools/silo_beverloo.py" "$binary" --variant "$variant"
   --jobs "$jobs" --budget-s "$(runs_budget 60)" --keep "$runs" --plot "$out/silo_results.png" \
   > "$out/silo_table.txt" 2> >(tee "$out/silo_progress.log" >&2)
 status=$?
+# The runs' logs without their snapshots (kilobytes): the table and the plot
+# can be made again from them anywhere (overlaps excepted):
+#   tools/silo_beverloo.py --variant full --analyse OUT/runs --plot silo_results.png
+for d in "$runs"/silo_D0_*/; do
+  [[ -d $d ]] || continue
+  mkdir -p "$out/runs/$(basename "$d")"
+  cp "$d"/*.csv "$d"/run.log "$out/runs/$(basename "$d")/" 2>/dev/null
+  rm -f "$out/runs/$(basename "$d")"/particles_*.csv
+done
 cat "$out/silo_table.txt" >> "$results"
+[[ -f $out/silo_results.png ]] || echo "no plot (no matplotlib here): make it from the logs in OUT/runs with
+  tools/silo_beverloo.py --variant $variant --analyse OUT/runs --plot OUT/silo_results.png" >> "$results"
 {
   echo
   echo "Each run's log (particle-steps/s over its run, the time per phase):"

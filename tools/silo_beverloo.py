@@ -304,6 +304,15 @@ def overlaps(run_dir, t, r_silo, d0):
     return sum(found) / len(found) / D, max(found) / D, len(found)
 
 
+def run_status(run_dir):
+    """done, or stopped (by a signal: the budget), from a kept run's log."""
+    try:
+        with open(os.path.join(run_dir, "run.log")) as f:
+            return "stopped" if any(line.startswith("stopped by a signal") for line in f) else "done"
+    except OSError:
+        return "done"
+
+
 def steps_per_second(run_dir):
     """The run's particle-steps per second (its run.log's `done:` line), or nan."""
     try:
@@ -393,7 +402,11 @@ def measure(out, v, d0, seconds, status="done"):
     phi, _ = solid_fraction_before(out, "bulk", v["t_open"])
     _, mass_open = solid_fraction_before(out, "silo", v["t_open"])
     _, mass_end = solid_fraction_before(out, "silo", v["t_end"] + 1)
-    mean_overlap, max_overlap, contacts = overlaps(out, v["t_open"], v["silo"] * D / 2, d0 * D)
+    # The overlaps need the particle snapshots; a copy of the logs alone
+    # (bench/validation_silo_gpu.sh's OUT/runs) has none.
+    have_snapshots = os.path.exists(os.path.join(out, "particles_%010d.csv" % 0))
+    mean_overlap, max_overlap, contacts = (overlaps(out, v["t_open"], v["silo"] * D / 2, d0 * D) if have_snapshots
+                                           else (float("nan"), float("nan"), 0))
     r.update(d0=d0, phi=phi, seconds=seconds, mass_open=mass_open, mass_end=mass_end,
              mean_overlap=mean_overlap, max_overlap=max_overlap, contacts=contacts, status=status,
              steps_per_s=steps_per_second(out))
@@ -479,7 +492,8 @@ def main():
         results = []
         try:
             if args.analyse:
-                runs = [(os.path.join(work, case_name(d0)), float("nan"), "done") for d0 in v["orifices"]]
+                runs = [(os.path.join(work, case_name(d0)), float("nan"), run_status(os.path.join(work, case_name(d0))))
+                        for d0 in v["orifices"]]
             else:
                 batch = [make_run(args, args.variant, d0, work) for d0 in v["orifices"]]
                 if args.budget_s:
@@ -491,7 +505,7 @@ def main():
                     raise RuntimeError("%s failed with exit status %d" % (failed[0].name, failed[0].returncode))
                 runs = [(os.path.join(work, r.name), r.wall(), r.status) for r in batch]
             todo = [(out, d0, seconds, status) for d0, (out, seconds, status) in zip(v["orifices"], runs)
-                    if os.path.exists(os.path.join(out, "particles_%010d.csv" % 0))]
+                    if os.path.exists(os.path.join(out, "flow_orifice.csv"))]
             # The analysis (pure Python, seconds per run at full size) of all runs at once.
             with concurrent.futures.ProcessPoolExecutor(max_workers=max(1, min(len(todo), os.cpu_count() or 1))) as pool:
                 futures = [pool.submit(measure, out, v, d0, seconds, status) for out, d0, seconds, status in todo]
