@@ -38,7 +38,9 @@
 # chute_energy.csv, the plots chute_profiles.png (velocity with the Bagnold
 # fits, solid fraction, bulk solid fraction against theta) and
 # chute_energy.png, OUT/chute_progress.log (the timestamped progress lines,
-# also on stderr), OUT/env.txt, and the runs' scenes and logs in OUT/runs.
+# also on stderr), OUT/env.txt, and the runs' scenes and logs in OUT/runs
+# (no snapshots): tools/chute_flow.py - --preset full --reuse --work OUT/runs
+# --out DIR analyses and plots them again where matplotlib is.
 set -uo pipefail
 [[ $# -ge 2 ]] || { echo "usage: $0 BUILD_DIR OUT" >&2; exit 2; }
 source "$(dirname "$0")/validation_common.sh"
@@ -57,9 +59,12 @@ run_tool "$python" "$root/tools/chute_flow.py" "$binary" --preset "$preset" "${e
   --jobs "${JOBS:-16}" --budget-s "$(runs_budget 30)" --out "$out" --work "$out/runs" \
   > "$out/chute_table.txt" 2> >(tee "$out/chute_progress.log" >&2)
 status=$?
+rm -f "$out"/runs/*/out/particles_*.csv   # not needed to analyse again (the layer logs are)
 {
   # The summary (written when the runs were analysed), else what the tool printed.
   if [[ -f $out/chute_summary.md ]]; then cat "$out/chute_summary.md"; else cat "$out/chute_table.txt"; fi
+  [[ -f $out/chute_profiles.png ]] || echo "no plots (no matplotlib here): make them from the runs' logs with
+  tools/chute_flow.py - --preset $preset ${extra[*]} --reuse --work OUT/runs --out OUT"
   echo
   echo "tools/chute_flow.py exit status $status after $(( $(date +%s) - t_start )) s of the ${budget} s budget"
 } >> "$results"

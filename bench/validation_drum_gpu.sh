@@ -34,7 +34,9 @@
 # Writes OUT/drum_results.md (machine, commit, plan, the table: paste into
 # docs/VALIDATION.md), OUT/drum_angle_<backend>.png (angle against Fr and
 # against rolling friction), OUT/drum_sections_<backend>.png (each case's last
-# cross-section), OUT/drum_progress.log (the timestamped progress lines, also
+# cross-section), OUT/drum_results.json (the numbers and the last
+# cross-sections: tools/drum.py --replot FILE --plots DIR makes the plots
+# where matplotlib is), OUT/drum_progress.log (the timestamped progress lines, also
 # on stderr), OUT/env.txt, and OUT/runs/<backend>/*.yaml, run.log and
 # timeseries.csv of every case (the snapshots are deleted once measured).
 set -uo pipefail
@@ -46,10 +48,12 @@ results=$out/drum_results.md
 cp "$out/env.txt" "$results"
 echo >> "$results"
 run_tool "$python" "$root/tools/drum.py" "$binary" --variant "$size" --backends "$backend" \
-  --jobs "${JOBS:-16}" --budget-s "$(runs_budget 45)" --keep "$out/runs" --prune --plots "$out" \
+  --jobs "${JOBS:-16}" --budget-s "$(runs_budget 45)" --keep "$out/runs" --prune --plots "$out" --save "$out/drum_results.json" \
   > "$out/drum_table.txt" 2> >(tee "$out/drum_progress.log" >&2)
 status=$?
 cat "$out/drum_table.txt" >> "$results"
+[[ -f $out/drum_angle_$backend.png ]] || echo "no plots (no matplotlib here): make them from the saved results with
+  tools/drum.py --replot OUT/drum_results.json --plots OUT" >> "$results"
 echo "tools/drum.py exit status $status after $(( $(date +%s) - t_start )) s of the ${budget} s budget" >> "$results"
 {
   echo

@@ -4,6 +4,8 @@ number and the rolling resistance (docs/VALIDATION.md, "Rotating drum").
 
     tools/drum.py BINARY [--variant ci|medium|full] [--backends cpu,cuda]
                   [--jobs N] [--keep DIR [--reuse] [--prune]] [--plots DIR]
+                  [--budget-s S] [--save FILE.json]
+    tools/drum.py --replot FILE.json [--plots DIR]
     tools/drum.py --write-cases
 
 A drum of radius R along y, periodic along its axis (no end caps, so no cap
@@ -40,6 +42,7 @@ run error. Standard library only, except the optional plots.
 import argparse
 import concurrent.futures
 import glob
+import json
 import math
 import os
 import shutil
@@ -335,7 +338,7 @@ def measure_case(backend, v, fr, mu_r, work, prune):
     out = os.path.join(work, backend, case_name(fr, mu_r))
     files = sorted(glob.glob(os.path.join(out, "particles_*.csv")))
     m = measure(v, fr, files)
-    m["last"] = [(x, z) for _, x, z, _, _ in read_csv(files[-1])[1]]
+    m["last"] = [(round(x, 7), round(z, 7)) for _, x, z, _, _ in read_csv(files[-1])[1]]  # 0.1 um: a plot's
     with open(os.path.join(out, "run.log")) as f:
         lines = f.readlines()
     done = [line.strip() for line in lines if line.startswith("done:")]
@@ -436,12 +439,23 @@ def main():
                     help="with --keep: measure a finished earlier run of the same scene instead of running it again")
     ap.add_argument("--prune", action="store_true", help="with --keep: delete the snapshots once measured")
     ap.add_argument("--plots", help="write matplotlib plots here")
+    ap.add_argument("--save", help="write the results (and each case's last cross-section) to this JSON file")
+    ap.add_argument("--replot", help="the table and the plots (into --plots) of a --save file; no runs")
     ap.add_argument("--budget-s", type=float, help="wall seconds for the runs: then what still runs is stopped "
                     "(SIGTERM) and measured over the snapshots it wrote")
     ap.add_argument("--write-cases", action="store_true", help="(re)write cases/validation/drum/")
     a = ap.parse_args()
     if a.write_cases:
         write_cases()
+        return 0
+    if a.replot:
+        with open(a.replot) as f:
+            saved = json.load(f)
+        v = VARIANTS[saved["variant"]]
+        results = [(tuple(k), m) for k, m in saved["results"]]
+        print_table(results, v)
+        from drum_plots import plot  # matplotlib only when asked for
+        plot(results, v, a.plots or ".", regime)
         return 0
     if not a.binary:
         ap.error("BINARY is required")
@@ -479,6 +493,9 @@ def main():
         if not a.keep:
             shutil.rmtree(work, ignore_errors=True)
     results.sort(key=lambda jm: (jm[0][0], jm[0][2], jm[0][1]))
+    if a.save:   # the measured numbers and each case's last cross-section: --replot makes the plots elsewhere
+        with open(a.save, "w") as f:
+            json.dump(dict(variant=a.variant, results=[[list(k), m] for k, m in results]), f)
     print_table(results, v)
     for (backend, fr, mu_r), m in results:
         print("%s %s: %s" % (backend, case_name(fr, mu_r), m["run"]))
