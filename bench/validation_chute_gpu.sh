@@ -59,6 +59,7 @@ run_tool "$python" "$root/tools/chute_flow.py" "$binary" --preset "$preset" "${e
   --jobs "${JOBS:-16}" --budget-s "$(runs_budget 30)" --out "$out" --work "$out/runs" \
   > "$out/chute_table.txt" 2> >(tee "$out/chute_progress.log" >&2)
 status=$?
+sleep 1   # the progress log's tee (a process substitution) writes its last lines
 rm -f "$out"/runs/*/out/particles_*.csv   # not needed to analyse again (the layer logs are)
 {
   # The summary (written when the runs were analysed), else what the tool printed.

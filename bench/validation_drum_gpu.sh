@@ -51,6 +51,7 @@ run_tool "$python" "$root/tools/drum.py" "$binary" --variant "$size" --backends 
   --jobs "${JOBS:-16}" --budget-s "$(runs_budget 45)" --keep "$out/runs" --prune --plots "$out" --save "$out/drum_results.json" \
   > "$out/drum_table.txt" 2> >(tee "$out/drum_progress.log" >&2)
 status=$?
+sleep 1   # the progress log's tee (a process substitution) writes its last lines
 cat "$out/drum_table.txt" >> "$results"
 [[ -f $out/drum_angle_$backend.png ]] || echo "no plots (no matplotlib here): make them from the saved results with
   tools/drum.py --replot OUT/drum_results.json --plots OUT" >> "$results"

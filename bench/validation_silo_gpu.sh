@@ -56,6 +56,7 @@ run_tool "$python" "$root/tools/silo_beverloo.py" "$binary" --variant "$variant"
   --jobs "$jobs" --budget-s "$(runs_budget 60)" --keep "$runs" --plot "$out/silo_results.png" \
   > "$out/silo_table.txt" 2> >(tee "$out/silo_progress.log" >&2)
 status=$?
+sleep 1   # the progress log's tee (a process substitution) writes its last lines
 # The runs' logs without their snapshots (kilobytes): the table and the plot
 # can be made again from them anywhere (overlaps excepted):
 #   tools/silo_beverloo.py --variant full --analyse OUT/runs --plot silo_results.png

@@ -338,7 +338,7 @@ def measure_case(backend, v, fr, mu_r, work, prune):
     out = os.path.join(work, backend, case_name(fr, mu_r))
     files = sorted(glob.glob(os.path.join(out, "particles_*.csv")))
     m = measure(v, fr, files)
-    m["last"] = [(round(x, 7), round(z, 7)) for _, x, z, _, _ in read_csv(files[-1])[1]]  # 0.1 um: a plot's
+    m["last"] = [(round(x, 7), round(z, 7)) for _, x, z, _, _ in read_csv(files[-1])[1]]  # to 0.1 um, enough for a plot
     with open(os.path.join(out, "run.log")) as f:
         lines = f.readlines()
     done = [line.strip() for line in lines if line.startswith("done:")]
