@@ -39,7 +39,8 @@ class Run:
         self.returncode = None
 
     def progress(self):
-        """(step, total, simulated time, ETA) of the last progress line, or None."""
+        """(step, total, simulated time, ETA, particles or '', particle-steps/s)
+        of the last progress line, or None."""
         try:
             with open(self.log, "rb") as f:
                 f.seek(max(0, os.path.getsize(self.log) - 4000))
@@ -50,7 +51,7 @@ class Run:
         if not found:
             return None
         s = found[-1]
-        return int(s[0]), int(s[1]), float(s[2]), int(s[4]), s[5]
+        return int(s[0]), int(s[1]), float(s[2]), int(s[4]), s[5], float(s[3])
 
     def wall(self):
         return (self.end or time.time()) - self.start if self.start else 0.0
@@ -119,15 +120,20 @@ def run_all(runs, deadline=None, jobs=None, label="runs", every=15.0, grace=30.0
                 on_finish(r)
         if active and time.time() - last_report >= every:
             last_report = time.time()
+            rate = 0.0
             for r in active:
                 p = r.progress()
                 if p:
-                    step, total, t, eta, count = p
+                    step, total, t, eta, count, r_rate = p
+                    rate += r_rate
                     say(label, "%s: step %d/%d (%.0f %%), t = %.4g s, ETA %d s%s, %.0f s so far" % (
                         r.name, step, total, 100.0 * step / max(total, 1), t, eta,
                         ", %s particles" % count if count else "", r.wall()))
                 else:
                     say(label, "%s: setting up, %.0f s so far" % (r.name, r.wall()))
+            if len(active) > 1:
+                say(label, "%d runs at %.3g particle-steps/s together (each run's own rate since its start, summed)"
+                    % (len(active), rate))
         if active or waiting:
             time.sleep(0.5)
     return runs
