@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Inclined chute flow on a rough base at full size on one GPU, within a wall
 # budget (docs/VALIDATION.md, "Inclined chute flow"; Silbert et al., Phys.
-# Rev. E 64, 051302, 2001; tools/chute_flow.py --preset full): Silbert's box
-# of 20 d x 10 d, periodic in the flow (x) and cross (y) directions, H = 20
-# (4,000 flowing spheres on 240 frozen ones of a rough base), at ten angles
+# Rev. E 64, 051302, 2001; tools/chute_flow.py --preset full): a box of
+# 20 d x 10 d (Silbert's as remembered, not confirmed), periodic in the
+# flow (x) and cross (y) directions, H = 20 (4,000 flowing spheres on 240
+# frozen ones of a rough base), at ten angles
 # 17, 18, ... 26 deg side by side on the one GPU, each for 200 tau from a
 # pour in simple shear, the profile averaged over the second 100 tau; the
 # flow/no-flow angle lies between the highest angle that stops and the lowest

@@ -33,7 +33,7 @@ Presets: `ci` (the CTest validation_chute: one flowing and one stopping run
 of 1651 particles, asserting a steady flow with the Bagnold shape at 24 deg
 and a stop at 14 deg), `medium` (the same layer at six angles, the CPU
 numbers in docs/VALIDATION.md), `full` (the GPU run of
-bench/validation_chute_gpu.sh: Silbert's box and H = 20, contacts 10x softer
+bench/validation_chute_gpu.sh: a 20 d x 10 d box and H = 20, contacts 10x softer
 than Silbert's, ten angles side by side, 200 tau). --budget-s stops the runs
 still going after that many seconds (SIGTERM) and analyses each over the
 time it reached. --reuse re-reads runs kept in
@@ -89,7 +89,7 @@ PRESETS = {
     "medium": dict(stiffness=2e3, step_fraction=0.05, lx=12, ly=8, height=16, duration=100, sample_every=1.0,
                    flow_angles=[17.0, 20.0, 22.0, 24.0, 26.0], stop_angles=[14.0], bracket=0, jobs=2),
     # The GPU run (bench/validation_chute_gpu.sh), sized for its wall budget:
-    # Silbert's box (20 d x 10 d) and H = 20, contacts 10x softer than
+    # a 20 d x 10 d box (Silbert's, from memory) and H = 20, contacts 10x softer than
     # Silbert's (overlaps still ~1e-3 d at the base), t_c / 10 steps, 200 tau,
     # ten angles side by side (no bisection: its runs would follow each other).
     "full": dict(stiffness=2e4, step_fraction=0.1, lx=20, ly=10, height=20, duration=200, sample_every=1.0,
