@@ -22,8 +22,9 @@ each angle the tool writes a scene, runs it, and reads the layer averages
     plug (constant) profiles for comparison;
   * the bulk solid fraction (mean over the middle half of the layer);
   * whether the layer stops (kinetic energy per mass below STOPPED g d at
-    the end) or flows; the flow/no-flow angle by bisection between an angle
-    that stops and one that flows.
+    the end) or flows; the flow/no-flow angle between the highest angle that
+    stops and the lowest that flows (narrowed by bisection for a preset with
+    `bracket` steps).
 
 Each run starts from a pour in simple shear (START_SHEAR_RATE), so that a
 Bagnold profile at the end is the flow's own, not the start's.
@@ -31,8 +32,11 @@ Bagnold profile at the end is the flow's own, not the start's.
 Presets: `ci` (the CTest validation_chute: one flowing and one stopping run
 of 1651 particles, asserting a steady flow with the Bagnold shape at 24 deg
 and a stop at 14 deg), `medium` (the same layer at six angles, the CPU
-numbers in docs/VALIDATION.md), `full` (the GPU benchmark at Silbert's
-stiffness, bench/validation_chute_gpu.sh). --reuse re-reads runs kept in
+numbers in docs/VALIDATION.md), `full` (the GPU run of
+bench/validation_chute_gpu.sh: a 20 d x 10 d box and H = 20, contacts 10x softer
+than Silbert's, ten angles side by side, 200 tau). --budget-s stops the runs
+still going after that many seconds (SIGTERM) and analyses each over the
+time it reached. --reuse re-reads runs kept in
 --work (a run of the same preset and angle) instead of running them. Tables (Markdown and CSV) and,
 where matplotlib is installed, plots go to --out.
 
@@ -50,6 +54,8 @@ import subprocess
 import sys
 import tempfile
 import time
+
+import budget_runs
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CASE_DIR = os.path.join(ROOT, "cases", "validation", "chute")
@@ -82,8 +88,13 @@ PRESETS = {
                flow_angles=[24.0], stop_angles=[14.0], bracket=0, jobs=1),
     "medium": dict(stiffness=2e3, step_fraction=0.05, lx=12, ly=8, height=16, duration=100, sample_every=1.0,
                    flow_angles=[17.0, 20.0, 22.0, 24.0, 26.0], stop_angles=[14.0], bracket=0, jobs=2),
-    "full": dict(stiffness=2e5, step_fraction=0.05, lx=40, ly=20, height=20, duration=100, sample_every=1.0,
-                 flow_angles=[20.0, 21.0, 22.0, 23.0, 24.0, 25.0, 26.0], stop_angles=[14.0], bracket=4, jobs=4),
+    # The GPU run (bench/validation_chute_gpu.sh), sized for its wall budget:
+    # a 20 d x 10 d box (Silbert's, from memory) and H = 20, contacts 10x softer than
+    # Silbert's (overlaps still ~1e-3 d at the base), t_c / 10 steps, 200 tau,
+    # ten angles side by side (no bisection: its runs would follow each other).
+    "full": dict(stiffness=2e4, step_fraction=0.1, lx=20, ly=10, height=20, duration=200, sample_every=1.0,
+                 flow_angles=[18.0, 19.0, 20.0, 21.0, 22.0, 23.0, 24.0, 25.0, 26.0], stop_angles=[17.0], bracket=0,
+                 jobs=10),
 }
 
 
@@ -173,25 +184,43 @@ def mean(xs):
     return sum(xs) / len(xs) if xs else float("nan")
 
 
-def run_angle(binary, backend, p, theta, work, reuse=False):
-    """Runs one angle (or, with `reuse`, reads its earlier run in `work`);
-    returns its profile and kinetic energy history."""
-    name = f"theta_{theta:.3f}".replace(".", "p")
-    d = os.path.join(work, name)
+def angle_dir(work, theta):
+    return os.path.join(work, f"theta_{theta:.3f}".replace(".", "p"))
+
+
+def prepare_angle(binary, backend, p, theta, work, reuse=False):
+    """Writes one angle's scene; returns its run (budget_runs.Run), or None
+    where `reuse` finds an earlier run of it in `work`."""
+    d = angle_dir(work, theta)
     os.makedirs(d, exist_ok=True)
     scene = os.path.join(d, "scene.yaml")
     out = os.path.join(d, "out")
     if reuse and os.path.exists(os.path.join(out, "average_all.csv")):
-        return analyse(p, theta, out, float("nan"))
+        return None
     with open(scene, "w") as f:
         f.write(scene_text(p, theta, "out"))
-    start = time.time()
-    r = subprocess.run([binary, "run", scene, "--backend", backend, "--out", out, "--overwrite"],
-                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    wall = time.time() - start
-    if r.returncode != 0:
-        raise RuntimeError(f"theta {theta}: grainstorm exited {r.returncode}:\n{r.stdout[-3000:]}")
-    return analyse(p, theta, out, wall)
+    return budget_runs.Run(f"theta {theta:g}", [binary, "run", scene, "--backend", backend, "--out", out, "--overwrite"],
+                           os.path.join(d, "run.txt"))
+
+
+def run_angles(binary, backend, p, thetas, work, reuse, jobs, deadline):
+    """Runs the angles side by side (at most `jobs` at once) and analyses
+    them; a run the deadline stopped is analysed over the time it reached."""
+    runs = [prepare_angle(binary, backend, p, t, work, reuse) for t in thetas]
+    if deadline:
+        budget_runs.print_plan("chute", binary, [(r.name, r.cmd[2]) for r in runs if r])
+    budget_runs.run_all([r for r in runs if r], deadline, jobs=jobs, label="chute")
+    results = []
+    for theta, r in zip(thetas, runs):
+        if r and r.status == "failed":
+            raise RuntimeError(f"theta {theta}: grainstorm exited {r.returncode}:\n{r.output()}")
+        if r and r.status == "not started":
+            print(f"theta {theta}: not started (budget)")
+            continue
+        res = analyse(p, theta, os.path.join(angle_dir(work, theta), "out"), r.wall() if r else float("nan"))
+        res["complete"] = r is None or r.status == "done"
+        results.append(res)
+    return results
 
 
 def analyse(p, theta, out, wall):
@@ -201,8 +230,10 @@ def analyse(p, theta, out, wall):
         v2 = sum(float(row[f"velocity_{a}"]) ** 2 for a in "xyz")
         energy.append((float(row["time"]) / TAU, (0.5 * v2 + 1.5 * float(row["granular_temperature"])) / (G * D)))
     z, phi, u = [], [], []
+    sampled = 0
     for i in range(layer_count(p)):
         rows = read_csv(os.path.join(out, f"average_z{i:03d}.csv"))
+        sampled = max(sampled, len(rows))
         z.append(i + 0.5)
         phi.append(mean([float(r["solid_fraction"]) for r in rows]))
         u.append(mean([float(r["velocity_x"]) for r in rows if int(r["particles"]) > 0] or [0.0]) / sgd)
@@ -211,7 +242,12 @@ def analyse(p, theta, out, wall):
     third = mean([e for t, e in energy if 0.5 * t_end < t <= 0.75 * t_end])
     fourth = mean([e for t, e in energy if t > 0.75 * t_end])
     res = dict(theta=theta, wall=wall, energy=energy, z=z, phi=phi, u=u, final_energy=energy[-1][1],
-               stopped=energy[-1][1] < STOPPED, drift=(fourth - third) / third if third > 0 else float("nan"))
+               stopped=energy[-1][1] < STOPPED, drift=(fourth - third) / third if third > 0 else float("nan"),
+               t_end=t_end, samples=sampled)
+    if sampled == 0:   # stopped (by a budget) before the profile's averaging window began
+        res.update(h=float("nan"), bulk_phi=float("nan"), amplitude=0.0, surface_u=0.0,
+                   residual=dict(bagnold=float("nan"), linear=float("nan"), plug=float("nan")), fit_points=[])
+        return res
     res.update(fit_profiles(z, phi, u))
     return res
 
@@ -257,7 +293,7 @@ def bracket(binary, backend, p, work, low, high, steps, reuse):
     runs = []
     for _ in range(steps):
         mid = 0.5 * (low + high)
-        r = run_angle(binary, backend, p, mid, work, reuse)
+        r = run_angles(binary, backend, p, [mid], work, reuse, 1, None)[0]
         runs.append(r)
         if r["stopped"]:
             low = mid
@@ -277,7 +313,8 @@ def describe(r):
     res = r["residual"]
     return (f"| {r['theta']:.2f} | {end_state(r)} | {r['final_energy']:.3g} | {r['drift']:+.3f} | "
             f"{r['h']:.1f} | {r['bulk_phi']:.3f} | {r['surface_u']:.2f} | {r['amplitude']:.4f} | "
-            f"{res['bagnold']:.3f} | {res['linear']:.3f} | {res['plug']:.3f} | {r['wall']:.0f} |")
+            f"{res['bagnold']:.3f} | {res['linear']:.3f} | {res['plug']:.3f} | {r['t_end']:.0f}"
+            f"{'' if r.get('complete', True) else ' (stopped by the budget)'} | {r['wall']:.0f} |")
 
 
 def write_tables(out, p, preset, results, bracket_result):
@@ -285,8 +322,8 @@ def write_tables(out, p, preset, results, bracket_result):
     with open(os.path.join(out, "chute_summary.md"), "w") as f:
         f.write(f"preset {preset}: {p}\n\n")
         f.write("| theta [deg] | end state | E_kin/(m g d) at end | E_kin change, last quarter | h [d] | bulk phi | u_surface [sqrt(gd)] | "
-                "Bagnold A | residual Bagnold | residual linear | residual plug | wall [s] |\n")
-        f.write("|---|---|---|---|---|---|---|---|---|---|---|---|\n")
+                "Bagnold A | residual Bagnold | residual linear | residual plug | t reached [tau] | wall [s] |\n")
+        f.write("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
         for r in sorted(results, key=lambda r: r["theta"]):
             f.write(describe(r) + "\n")
         if bracket_result:
@@ -315,7 +352,7 @@ def plot(out, results):
     except ImportError:
         print("matplotlib not found: no plots (the tables are written)")
         return
-    flowing = sorted([r for r in results if not r["stopped"]], key=lambda r: r["theta"])
+    flowing = sorted([r for r in results if not r["stopped"] and r["samples"] > 0], key=lambda r: r["theta"])
     fig, ax = plt.subplots(1, 3, figsize=(15, 4.5))
     for r in flowing:
         line, = ax[0].plot(r["u"], r["z"], "o", ms=3, label=f"{r['theta']:.1f} deg")
@@ -367,7 +404,7 @@ def check_ci(results):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("binary")
+    ap.add_argument("binary", help="grainstorm (not run for the angles --reuse finds in --work)")
     ap.add_argument("--preset", choices=sorted(PRESETS), default="ci")
     ap.add_argument("--out", help="tables and plots here (default: none for ci, chute_<preset> otherwise)")
     ap.add_argument("--work", help="keep the runs here (default: a temporary directory, removed)")
@@ -376,6 +413,8 @@ def main():
     ap.add_argument("--angles", help="comma-separated angles [deg] instead of the preset's (no bracket)")
     ap.add_argument("--duration", type=float, help="simulated time per run [tau] instead of the preset's")
     ap.add_argument("--height", type=float, help="H [d] instead of the preset's")
+    ap.add_argument("--budget-s", type=float, help="wall seconds for the runs: then what still runs is stopped "
+                    "(SIGTERM) and analysed over the time it reached (no bisection)")
     ap.add_argument("--reuse", action="store_true", help="read the runs already in --work instead of running them again")
     ap.add_argument("--write-cases", action="store_true", help="(re)write cases/validation/chute/ and exit")
     a = ap.parse_args()
@@ -394,7 +433,7 @@ def main():
                 f.write(scene_text(PRESETS[preset], theta, f"out/chute_{preset}_{theta:.0f}deg"))
             print("wrote", os.path.relpath(path, ROOT))
         return 0
-    if not os.access(a.binary, os.X_OK):
+    if not a.reuse and not os.access(a.binary, os.X_OK):
         print(f"not an executable: {a.binary}", file=sys.stderr)
         return 2
     work = a.work or tempfile.mkdtemp(prefix="chute_")
@@ -402,8 +441,7 @@ def main():
     out = a.out or (None if a.preset == "ci" else f"chute_{a.preset}")
     try:
         angles = p["flow_angles"] + p["stop_angles"]
-        with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
-            results = list(pool.map(lambda t: run_angle(a.binary, a.backend, p, t, work, a.reuse), angles))
+        results = run_angles(a.binary, a.backend, p, angles, work, a.reuse, jobs, budget_runs.deadline_from(a.budget_s))
         bracket_result = None
         stops = [r["theta"] for r in results if r["stopped"]]
         flows = [r["theta"] for r in results if not r["stopped"]]
@@ -421,7 +459,8 @@ def main():
     finally:
         if not a.work:
             shutil.rmtree(work, ignore_errors=True)
-    print("| theta | end | E_kin | E drift | h | bulk phi | u_surf | A | res Bagnold | res linear | res plug | wall s |")
+    print("| theta | end | E_kin | E drift | h | bulk phi | u_surf | A | res Bagnold | res linear | res plug | t [tau] | wall s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in sorted(results, key=lambda r: r["theta"]):
         print(describe(r))
     if bracket_result:
@@ -430,7 +469,7 @@ def main():
         write_tables(out, p, a.preset, results, bracket_result)
         plot(out, results)
         print("tables and plots in", out)
-    if a.preset == "ci":
+    if a.preset == "ci" and not (a.angles or a.duration or a.height):   # the CTest's own runs only
         failures = check_ci(results)
         for f in failures:
             print("FAIL:", f)

@@ -4,6 +4,8 @@ number and the rolling resistance (docs/VALIDATION.md, "Rotating drum").
 
     tools/drum.py BINARY [--variant ci|medium|full] [--backends cpu,cuda]
                   [--jobs N] [--keep DIR [--reuse] [--prune]] [--plots DIR]
+                  [--budget-s S] [--save FILE.json]
+    tools/drum.py --replot FILE.json [--plots DIR]
     tools/drum.py --write-cases
 
 A drum of radius R along y, periodic along its axis (no end caps, so no cap
@@ -40,12 +42,15 @@ run error. Standard library only, except the optional plots.
 import argparse
 import concurrent.futures
 import glob
+import json
 import math
 import os
 import shutil
 import subprocess
 import sys
 import tempfile
+
+import budget_runs
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CASE_DIR = os.path.join(ROOT, "cases", "validation", "drum")
@@ -60,10 +65,14 @@ VARIANTS = {
     "medium": dict(R=0.03, L=0.012, r=0.001, settle=0.3, transient=1.5, measure=1.5, per_rad=10,
                    cases=[(1e-3, 0.0), (1e-2, 0.0), (3e-2, 0.0), (0.1, 0.0), (0.3, 0.0), (1.0, 0.0), (3.0, 0.0),
                           (1e-2, 0.1), (1e-2, 0.3)]),
-    "full": dict(R=0.05, L=0.04, r=0.001, settle=0.4, transient=2.0, measure=2.0, per_rad=10,
-                 cases=[(1e-3, 0.0), (3e-3, 0.0), (1e-2, 0.0), (3e-2, 0.0), (0.1, 0.0), (0.3, 0.0),
+    # The GPU run (bench/validation_drum_gpu.sh), sized for its wall budget:
+    # 1.5 rad to reach the angle and 1.5 rad measured, a fast bed spun up
+    # over 2 revolutions and measured over one, and no Fr = 1e-3 (at 0.44
+    # rad/s it alone would take 2.6e5 steps, the budget's longest path).
+    "full": dict(R=0.05, L=0.04, r=0.001, settle=0.4, transient=1.5, measure=1.5, per_rad=10, spin_up_turns=2,
+                 cases=[(3e-3, 0.0), (1e-2, 0.0), (3e-2, 0.0), (0.1, 0.0), (0.3, 0.0),
                         (0.6, 0.0), (1.0, 0.0), (1.5, 0.0), (3.0, 0.0),
-                        (1e-2, 0.05), (1e-2, 0.1), (1e-2, 0.2), (1e-2, 0.4), (0.1, 0.3)]),
+                        (1e-2, 0.1), (1e-2, 0.2), (1e-2, 0.4), (0.1, 0.3)]),
 }
 FILL = 0.30            # bed cross-section / drum cross-section, at the packing below
 PACKING = 0.60         # solid fraction assumed for the settled bed (sets the count)
@@ -101,7 +110,8 @@ def rotation_plan(v, fr):
     carried round the wall (Fr near or above 1) spins up over revolutions,
     not over the fraction of one that lifts a rolling bed to its angle."""
     if fr >= SPIN_UP_FROUDE:
-        return max(v["transient"], SPIN_UP_TURNS * 2 * math.pi), max(v["measure"], 2 * math.pi)
+        turns = v.get("spin_up_turns", SPIN_UP_TURNS)
+        return max(v["transient"], turns * 2 * math.pi), max(v["measure"], 2 * math.pi)
     return v["transient"], v["measure"]
 
 
@@ -193,7 +203,7 @@ def measure(v, fr, files):
     theta0 = sum(per_snap) / len(per_snap)
     spread = (sum((a - theta0) ** 2 for a in per_snap) / len(per_snap)) ** 0.5
     res = dict(centroid_angle=theta0, angle_spread=spread, above=above, corotation=corot,
-               wall_layer=wall / max(n_wall, 1),
+               wall_layer=wall / max(n_wall, 1), snapshots=len(snaps),
                angle=float("nan"), curvature=float("nan"), airborne=float("nan"))
     if above > CENTRIFUGE_ABOVE:
         return res
@@ -304,32 +314,60 @@ def regime(m):
     return "rolling"
 
 
-def run_case(binary, backend, v, fr, mu_r, work, prune, reuse):
+def prepare_case(binary, backend, v, fr, mu_r, work, reuse):
+    """Writes one case's scene; returns its run (budget_runs.Run), or None
+    where --reuse finds a finished run of the very same scene."""
     name = case_name(fr, mu_r)
     out = os.path.join(work, backend, name)
     scene = os.path.join(work, backend, name + ".yaml")
     os.makedirs(os.path.dirname(scene), exist_ok=True)
     text = scene_text(v, fr, mu_r, out)
-    log = os.path.join(out, "run.log")
-    if not (reuse and same_run(scene, text, log)):
-        if os.path.isdir(out):
-            shutil.rmtree(out)
-        with open(scene, "w") as f:
-            f.write(text)
-        r = subprocess.run([binary, "run", scene, "--backend", backend, "--out", out],
-                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-        if r.returncode != 0:
-            raise RuntimeError("%s (%s) failed with exit code %d:\n%s" % (name, backend, r.returncode, r.stdout[-3000:]))
+    if reuse and same_run(scene, text, os.path.join(out, "run.log")):
+        return None
+    if os.path.isdir(out):
+        shutil.rmtree(out)
+    with open(scene, "w") as f:
+        f.write(text)
+    return budget_runs.Run("%s/%s" % (backend, name), [binary, "run", scene, "--backend", backend, "--out", out],
+                           os.path.join(work, backend, name + ".log"))
+
+
+def measure_case(backend, v, fr, mu_r, work, prune):
+    """The measured numbers of one case's run directory (a run stopped by the
+    budget: over the snapshots of the window it reached)."""
+    out = os.path.join(work, backend, case_name(fr, mu_r))
     files = sorted(glob.glob(os.path.join(out, "particles_*.csv")))
     m = measure(v, fr, files)
-    m["last"] = [(x, z) for _, x, z, _, _ in read_csv(files[-1])[1]]
-    with open(log) as f:
-        done = [line.strip() for line in f if line.startswith("done:")]
-    m["run"] = done[-1] if done else ""
+    m["last"] = [(round(x, 7), round(z, 7)) for _, x, z, _, _ in read_csv(files[-1])[1]]  # to 0.1 um, enough for a plot
+    with open(os.path.join(out, "run.log")) as f:
+        lines = f.readlines()
+    done = [line.strip() for line in lines if line.startswith("done:")]
+    stopped = [line.strip() for line in lines if line.startswith("stopped by a signal")]
+    m["run"] = done[-1] if done else (stopped[-1] if stopped else "")
+    m["complete"] = bool(done)
     if prune:  # the snapshots of a full run take gigabytes; keep the logs
         for f in files:
             os.remove(f)
     return m
+
+
+def planned_snapshots(v, fr):
+    """Snapshots the measuring window holds when the run completes: those at
+    multiples of the output interval from the window's start to the end (and
+    the last, which the run writes at its end)."""
+    w = omega(fr, v["R"])
+    t_from = v["settle"] + rotation_plan(v, fr)[0] / w
+    interval = rotation_plan(v, fr)[1] / (v["per_rad"] * v["measure"] * w)
+    end = run_seconds(v, fr)
+    times = [k * interval for k in range(int(end / interval) + 1)]
+    if end - times[-1] > 1e-9:
+        times.append(end)
+    return sum(1 for t in times if t >= t_from - 1e-9)
+
+
+def run_seconds(v, fr):
+    """Simulated seconds of a case."""
+    return v["settle"] + sum(rotation_plan(v, fr)) / omega(fr, v["R"])
 
 
 def same_run(scene, text, log):
@@ -348,14 +386,15 @@ def fmt(x, f="%.1f"):
 def print_table(results, v):
     print("drum R = %g m (D/d = %g), periodic length %g m, fill %.0f %%, mu = %g, wall mu = %g, e = %g"
           % (v["R"], v["R"] / v["r"], v["L"], 100 * FILL, FRICTION, WALL_FRICTION, RESTITUTION))
-    head = "| backend | Fr | rolling_friction | omega [rad/s] | angle [deg] | centroid angle [deg] | spread [deg] | curvature [deg] | airborne | above axis | co-rotation | wall layer | regime |"
+    head = "| backend | Fr | rolling_friction | omega [rad/s] | angle [deg] | centroid angle [deg] | spread [deg] | curvature [deg] | airborne | above axis | co-rotation | wall layer | regime | snapshots measured |"
     print(head)
     print("|" + "---|" * (head.count("|") - 1))
     for (backend, fr, mu_r), m in results:
-        print("| %s | %g | %g | %.4g | %s | %s | %s | %s | %s | %.3f | %.3f | %.2f | %s |" % (
+        print("| %s | %g | %g | %.4g | %s | %s | %s | %s | %s | %.3f | %.3f | %.2f | %s | %d of %d%s |" % (
             backend, fr, mu_r, omega(fr, v["R"]), fmt(m["angle"]), fmt(m["centroid_angle"]),
             fmt(m["angle_spread"]), fmt(m["curvature"]), fmt(m["airborne"], "%.3f"),
-            m["above"], m["corotation"], m["wall_layer"], regime(m)))
+            m["above"], m["corotation"], m["wall_layer"], regime(m), m["snapshots"], planned_snapshots(v, fr),
+            "" if m.get("complete", True) else " (stopped by the budget)"))
 
 
 def check_ci(results):
@@ -370,6 +409,10 @@ def check_ci(results):
     for (backend, fr, mu_r), m in results:
         by.setdefault(backend, {})[(fr, mu_r)] = m
     for backend, ms in by.items():
+        missing = [k for k in ((0.01, 0.0), (0.01, 0.3), (3.0, 0.0)) if k not in ms]
+        if missing:   # a run a budget stopped before its measuring window
+            check(False, "%s: no measurement of the case(s) Fr, rolling_friction = %s" % (backend, missing))
+            continue
         plain, rolling, fast = ms[(0.01, 0.0)], ms[(0.01, 0.3)], ms[(3.0, 0.0)]
         lo, hi = CI_ANGLE_BOUNDS
         check(lo <= plain["angle"] <= hi,
@@ -396,26 +439,63 @@ def main():
                     help="with --keep: measure a finished earlier run of the same scene instead of running it again")
     ap.add_argument("--prune", action="store_true", help="with --keep: delete the snapshots once measured")
     ap.add_argument("--plots", help="write matplotlib plots here")
+    ap.add_argument("--save", help="write the results (and each case's last cross-section) to this JSON file")
+    ap.add_argument("--replot", help="the table and the plots (into --plots) of a --save file; no runs")
+    ap.add_argument("--budget-s", type=float, help="wall seconds for the runs: then what still runs is stopped "
+                    "(SIGTERM) and measured over the snapshots it wrote")
     ap.add_argument("--write-cases", action="store_true", help="(re)write cases/validation/drum/")
     a = ap.parse_args()
     if a.write_cases:
         write_cases()
         return 0
+    if a.replot:
+        with open(a.replot) as f:
+            saved = json.load(f)
+        v = VARIANTS[saved["variant"]]
+        results = [(tuple(k), m) for k, m in saved["results"]]
+        print_table(results, v)
+        from drum_plots import plot  # matplotlib only when asked for
+        plot(results, v, a.plots or ".", regime)
+        return 0
     if not a.binary:
         ap.error("BINARY is required")
     v = VARIANTS[a.variant]
+    deadline = budget_runs.deadline_from(a.budget_s)   # the plan's checks count too
     work = a.keep or tempfile.mkdtemp(prefix="drum_")
     jobs = [(b, fr, mu_r) for b in a.backends.split(",") for fr, mu_r in v["cases"]]
+    # Longest first: with a budget, the long runs set the wall time.
+    jobs.sort(key=lambda j: -run_seconds(v, j[1]))
+    results = []
     try:
-        with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as ex:
-            futs = [ex.submit(run_case, a.binary, b, v, fr, mu_r, work, a.prune, a.reuse) for b, fr, mu_r in jobs]
-            results = [(j, f.result()) for j, f in zip(jobs, futs)]
+        runs = [prepare_case(a.binary, b, v, fr, mu_r, work, a.reuse) for b, fr, mu_r in jobs]
+        if a.budget_s:
+            budget_runs.print_plan("drum", a.binary, [(r.name, r.cmd[2]) for r in runs if r])
+        budget_runs.run_all([r for r in runs if r], deadline, jobs=max(1, a.jobs),
+                            label="drum")
+        failed = [r for r in runs if r and r.status == "failed"]
+        if failed:
+            raise RuntimeError("%s failed with exit code %d:\n%s" % (failed[0].name, failed[0].returncode,
+                                                                      failed[0].output()))
+        with concurrent.futures.ProcessPoolExecutor(max_workers=max(1, min(len(jobs), os.cpu_count() or 1))) as ex:
+            futs = [ex.submit(measure_case, b, v, fr, mu_r, work, a.prune) for b, fr, mu_r in jobs]
+            for j, r, f in zip(jobs, runs, futs):
+                try:
+                    results.append((j, f.result()))
+                except (RuntimeError, IndexError, OSError) as e:
+                    if r is None or r.status not in ("stopped", "not started"):
+                        raise
+                    print("%s %s: %s by the budget before its measuring window (%s)" % (
+                        j[0], case_name(*j[1:]), r.status, e))
     except (RuntimeError, OSError) as e:
         sys.stderr.write("drum: %s\n" % e)
         return 2
     finally:
         if not a.keep:
             shutil.rmtree(work, ignore_errors=True)
+    results.sort(key=lambda jm: (jm[0][0], jm[0][2], jm[0][1]))
+    if a.save:   # the measured numbers and each case's last cross-section: --replot makes the plots elsewhere
+        with open(a.save, "w") as f:
+            json.dump(dict(variant=a.variant, results=[[list(k), m] for k, m in results]), f)
     print_table(results, v)
     for (backend, fr, mu_r), m in results:
         print("%s %s: %s" % (backend, case_name(fr, mu_r), m["run"]))
