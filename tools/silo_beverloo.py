@@ -136,7 +136,7 @@ pairs:
   - {{materials: [glass, glass], stiffness_normal: {g['stiffness']:g}, restitution: 0.5, friction: 0.5}}
   - {{materials: [glass, steel], stiffness_normal: {g['stiffness']:g}, restitution: 0.5, friction: 0.5}}
 walls:
-  - {{name: silo, material: steel, cylinder: {{base: [0, 0, 0], axis: [0, 0, 1], radius: {fmt(g['r_silo'])}, length: {fmt(g['inlet_top'])}}}}}
+  - {{name: silo, material: steel, cylinder: {{base: [0, 0, 0], axis: [0, 0, 1], radius: {fmt(g['r_silo'])}, length: {fmt(g['top'])}}}}}
   - {{name: bottom, material: steel, plate: {{point: [0, 0, 0], normal: [0, 0, 1], radius: {fmt(g['r_silo'])}, hole: {{radius: {fmt(g['d0'] / 2)}}}}}}}
   - {{name: gate, material: steel, plate: {{point: [0, 0, {fmt(-0.5 * D)}], normal: [0, 0, 1], radius: {fmt(g['d0'])}}}{gate_window}}}
 """
