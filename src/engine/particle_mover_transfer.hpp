@@ -42,7 +42,7 @@ struct ScatterHistory {
 // allocating device memory every step would cost more than the copies.
 template <class T>
 T* staging(DeviceArray<unsigned char>& scratch, std::size_t n) {
-  scratch.resize(n * sizeof(T));
+  scratch.resize_discarding(n * sizeof(T));
   return reinterpret_cast<T*>(scratch.data());
 }
 

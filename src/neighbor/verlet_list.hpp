@@ -40,20 +40,26 @@
 
 namespace gs {
 
+// Offsets into the list: unsigned 32-bit, so a list of up to 2^32 - 1
+// entries (4e8 spheres of ten neighbours) costs 4 bytes per particle, not 8.
+// A build that would hold more is refused (OffsetsWrapped).
+using ListOffset = std::uint32_t;
+
 // Contact candidates of particle i from the list, in ascending id.
 struct ListCandidates {
-  const Index* begin;  // per owned particle + 1: i's entries are list[begin[i], begin[i + 1])
-  const Index* list;   // store indices of the neighbours
+  const ListOffset* begin;  // per owned particle + 1: i's entries are list[begin[i], begin[i + 1])
+  const Index* list;        // store indices of the neighbours
   template <class Visit>
   GS_HD GS_INLINE void for_each(Index i, const Vec3d& /*xi*/, Visit& visit) const {
-    for (Index k = begin[i]; k < begin[i + 1]; ++k) visit(list[k]);
+    for (ListOffset k = begin[i]; k < begin[i + 1]; ++k) visit(list[k]);
   }
 };
 
 struct VerletList {
   explicit VerletList(Backend b) : begin(b), list(b), reference(b), scan_scratch(b) {}
 
-  DeviceArray<Index> begin, list;
+  DeviceArray<ListOffset> begin;
+  DeviceArray<Index> list;
   DeviceArray<Vec3f> reference;  // owned particles' positions at the build, rounded to fp32
   PeriodicBox box;               // the grid's at the build: moves are measured to the nearest image
   std::vector<std::vector<Index>> parts;  // per thread, while building (CPU)
@@ -124,10 +130,10 @@ struct MovedBeyond {
 struct ListCountKernel {
   CellCandidates cells;
   WithinSkin near;
-  Index* count;
+  ListOffset* count;
   GS_HD void operator()(Index i) const {
     const Vec3d xi = near.position[i];
-    Index n = 0;
+    ListOffset n = 0;
     auto tally = [&](Index j) { n += near(i, j, xi) ? 1 : 0; };
     cells.for_each(i, xi, tally);
     count[i + 1] = n;
@@ -141,7 +147,7 @@ struct ListFillKernel {
   CellCandidates cells;
   WithinSkin near;
   const ParticleId* id;
-  const Index* begin;
+  const ListOffset* begin;
   Index* list;
   GS_HD void operator()(Index i) const {
     const Vec3d xi = near.position[i];
@@ -153,6 +159,14 @@ struct ListFillKernel {
     cells.for_each(i, xi, append);
     sort_by_id(out, n, id);
   }
+};
+
+// Whether the scan of the counts into offsets wrapped past 2^32 (a list too
+// long for 32-bit offsets): each count is below 2^32, so a running sum that
+// wrapped is smaller than the one before it somewhere.
+struct OffsetsWrapped {
+  const ListOffset* begin;
+  GS_HD bool operator()(Index i) const { return begin[i + 1] < begin[i]; }
 };
 
 // Builds the list of the n_owned first particles against all n_total of the

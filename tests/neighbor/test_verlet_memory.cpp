@@ -1,8 +1,9 @@
-// The Verlet list's reference positions are kept in fp32
-// (neighbor/verlet_list.hpp, MovedBeyond): a particle far from the origin,
+// The Verlet list's compact layout (neighbor/verlet_list.hpp). Its reference
+// positions are kept in fp32 (MovedBeyond): a particle far from the origin,
 // whose reference rounded towards the way it then moves, must still count as
 // moved once it has truly moved half the skin, though the distance to its
-// rounded reference is below that.
+// rounded reference is below that. Its offsets are unsigned 32-bit: a scan
+// that wrapped past 2^32 is caught (OffsetsWrapped), not read as a short list.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,6 +24,7 @@ constexpr double kSkin = 1e-4;  // half the skin: 50 um
 // is rounded down by 3.4 um.
 struct FarFromOrigin {
   CellList cells{Backend::cpu};
+  DeviceArray<unsigned char> scratch{Backend::cpu};
   VerletList list{Backend::cpu};
   DeviceArray<Vec3d> position{Backend::cpu};
   DeviceArray<float> radius{Backend::cpu};
@@ -36,7 +38,7 @@ struct FarFromOrigin {
     radius.from_host(std::vector<float>{kRadius, kRadius});
     id.from_host(std::vector<ParticleId>{0, 1});
     const CellGrid grid = make_cell_grid({99.99, 100.49, 100.49}, {100.02, 100.51, 100.51}, 2 * kRadius + kSkin);
-    build_cells<CpuExec>(cells, position.data(), id.data(), 2, grid);
+    build_cells<CpuExec>(cells, position.data(), id.data(), 2, grid, scratch);
     build_verlet_list<CpuExec>(list, cells, position.data(), radius.data(), id.data(), 2, 2, kSkin);
   }
   // Whether the list is stale with the first sphere moved by dx along x.
@@ -74,6 +76,7 @@ TEST(VerletReference, SmallMovesKeepTheList) {
 // list and 0.51 does not, as with fp64 references.
 TEST(VerletReference, NearTheOriginTheTestIsHalfTheSkin) {
   CellList cells{Backend::cpu};
+  DeviceArray<unsigned char> scratch{Backend::cpu};
   VerletList list{Backend::cpu};
   DeviceArray<Vec3d> position{Backend::cpu};
   DeviceArray<float> radius{Backend::cpu};
@@ -83,7 +86,7 @@ TEST(VerletReference, NearTheOriginTheTestIsHalfTheSkin) {
   radius.from_host(std::vector<float>{kRadius, kRadius});
   id.from_host(std::vector<ParticleId>{0, 1});
   const CellGrid grid = make_cell_grid({-0.01, -0.01, -0.01}, {0.01, 0.01, 0.01}, 2 * kRadius + kSkin);
-  build_cells<CpuExec>(cells, position.data(), id.data(), 2, grid);
+  build_cells<CpuExec>(cells, position.data(), id.data(), 2, grid, scratch);
   build_verlet_list<CpuExec>(list, cells, position.data(), radius.data(), id.data(), 2, 2, kSkin);
   for (const double fraction : {0.49, 0.51}) {
     std::vector<Vec3d> moved = start;
@@ -92,6 +95,22 @@ TEST(VerletReference, NearTheOriginTheTestIsHalfTheSkin) {
     position.from_host(moved);
     EXPECT_EQ(verlet_list_stale<CpuExec>(list, position.data(), 2, 2), fraction > 0.5) << fraction;
   }
+}
+
+// Offsets past 2^31 are valid (4e8 spheres of six neighbours: 2.4e9
+// entries); a running sum past 2^32 wraps to a smaller value and is caught.
+TEST(VerletOffsets, AWrappedScanIsCaught) {
+  // Counts 2.5e9 and 1.5e9 (a list of 4e9 entries fits), then 0.5e9 more (4.5e9 does not).
+  const ListOffset counts[] = {2500000000u, 1500000000u, 500000000u};
+  std::vector<ListOffset> begin = {0};
+  for (const ListOffset c : counts) begin.push_back(begin.back() + c);  // unsigned: wraps as the GPU's scan
+  const OffsetsWrapped wrapped{begin.data()};
+  EXPECT_FALSE(wrapped(0));
+  EXPECT_FALSE(wrapped(1));  // 4e9 < 2^32
+  EXPECT_TRUE(wrapped(2));   // 4.5e9 wrapped to 2e8
+  // A zero count never looks like a wrap.
+  const std::vector<ListOffset> flat = {0, 7, 7, 4000000000u, 4000000000u};
+  for (Index i = 0; i + 1 < Index(flat.size()); ++i) EXPECT_FALSE(OffsetsWrapped{flat.data()}(i)) << i;
 }
 
 }  // namespace
