@@ -5,7 +5,8 @@
 #   [OUT=dir] [N=4000000] [LARGEST="400000000:12 400000000:10 360000000:12"] \
 #     bench/memory_bench.sh BUILD [BASE_BUILD]
 # BUILD, BASE_BUILD: CUDA build directories (src/grainstorm, bench/settle_bench),
-# e.g. this tree and main built beside it. Results go to $OUT (default
+# e.g. this tree and main built beside it; BACKEND=cpu makes it a dry run on
+# the CPU (with small N and LARGEST). Results go to $OUT (default
 # ./memory_out): memory_bench.txt (the summary) and one log per run.
 #  1. settle_bench --n N --effects friction|none --digest yes, each build: the
 #     exact peak and held bytes per particle (the high-water mark of device
@@ -23,11 +24,13 @@
 # About 3-4 minutes on an H200 (most of it the largest bed's set-up); a
 # try that would start with less than 60 s of the 300 s budget left is skipped.
 set -uo pipefail
-build=$1 base=${2:-}
+root=$(pwd)
+absolute() { [[ $1 == /* ]] && echo "$1" || echo "$root/$1"; }
+build=$(absolute "$1") base=${2:+$(absolute "$2")}
+backend=${BACKEND:-cuda}  # BACKEND=cpu: a dry run of the script on the CPU
 n=${N:-4000000}
 largest=${LARGEST:-"400000000:12 400000000:10 360000000:12"}
 budget=${BUDGET_S:-300}
-root=$(pwd)
 OUT=${OUT:-$root/memory_out}
 mkdir -p "$OUT"
 OUT=$(cd "$OUT" && pwd)
@@ -55,18 +58,20 @@ print(f"~{float(m.group(1)) * scale / int(n.group(1)):.0f} (from {m.group(1)} {m
 PY
 }
 
-builds=("$build")
-[[ -n $base ]] && builds=("$base" "$build")
+# "base" and "this": BASE_BUILD and BUILD.
+labels=(this)
+[[ -n $base ]] && labels=(base this)
+dir_of() { [[ $1 == base ]] && echo "$base" || echo "$build"; }
 
 say "== settle_bench --n $n --steps 50 (pressed lattice; peak and held bytes per particle, digest)"
 for effects in friction none; do
-  for b in "${builds[@]}"; do
-    log=$OUT/settle_${effects}_$(basename "$b").log
-    timeout 120 "$root/$b/bench/settle_bench" --backend cuda --n "$n" --steps 50 --effects "$effects" --digest yes \
+  for label in "${labels[@]}"; do
+    b=$(dir_of "$label") log=$OUT/settle_${effects}_$label.log
+    timeout 120 "$b/bench/settle_bench" --backend "$backend" --n "$n" --steps 50 --effects "$effects" --digest yes \
       > "$log" 2>&1
     line=$(grep -oE "peak_bytes_per_particle=[0-9.]+ held_bytes_per_particle=[0-9.]+" "$log" | head -1)
     digest=$(grep -oE "state_digest=0x[0-9a-f]+" "$log" | head -1)
-    say "$effects $(basename "$b"): ${line:-FAILED ($(tail -1 "$log"))} ${digest}"
+    say "$effects $label: ${line:-FAILED ($(tail -1 "$log"))} ${digest}"
   done
 done
 
@@ -102,17 +107,18 @@ PY
 say "== static dense bed, N = $n, 50 steps (grainstorm run)"
 for friction in true false; do
   dense_scene "$n" "$friction" > "$work/dense_$friction.yaml"
-  for b in "${builds[@]}"; do
-    log=$OUT/dense_friction_${friction}_$(basename "$b").log
+  for label in "${labels[@]}"; do
+    b=$(dir_of "$label") log=$OUT/dense_friction_${friction}_$label.log
     rm -rf "$work/run"
-    timeout 120 "$root/$b/src/grainstorm" run "$work/dense_$friction.yaml" --backend cuda --steps 50 \
+    timeout 120 "$b/src/grainstorm" run "$work/dense_$friction.yaml" --backend "$backend" --steps 50 \
       --out "$work/run" > "$log" 2>&1
-    say "friction $friction $(basename "$b"): $(bytes_of "$log") bytes per particle (exit $?)"
+    rc=$?
+    say "friction $friction $label: $(bytes_of "$log") bytes per particle (exit $rc)"
   done
 done
 rm -rf "$work/run"
 
-say "== largest frictional lattice bed with $(basename "$build") (3 steps)"
+say "== largest frictional lattice bed with BUILD (3 steps)"
 for try in $largest; do
   count=${try%%:*} slots=${try##*:}
   if (($(left) < 60)); then say "$count particles, $slots slots: skipped (budget)"; continue; fi
@@ -123,7 +129,7 @@ for try in $largest; do
   log=$OUT/largest_${count}_$slots.log
   rm -rf "$work/largest_run"
   start=$SECONDS
-  timeout $(($(left) - 10)) "$root/$build/src/grainstorm" run "$scene" --backend cuda --steps 3 --overwrite \
+  timeout $(($(left) - 10)) "$build/src/grainstorm" run "$scene" --backend "$backend" --steps 3 --overwrite \
     > "$log" 2>&1
   rc=$?
   rm -rf "$work/largest_run"

@@ -79,11 +79,14 @@ TEST(MemoryEstimate, MatchesTheRunsPeakOnTheCpu) {
   for (const unsigned effects : {unsigned(kFriction), 0u})
     for (const bool drift : {false, true}) {
       SceneSpec scene = lattice_scene(side, effects);
-      if (drift)
+      if (drift) {
         for (ParticleInit& p : scene.particles) p.velocity = {0.5, 0, 0};  // 5 um a step, half the skin in 20
+      }
       const MemoryEstimate m = estimate_memory(scene);
       const Measured got = measure(scene, drift ? 60 : 20);
-      if (drift) EXPECT_GE(got.builds, 2);
+      if (drift) {
+        EXPECT_GE(got.builds, 2);
+      }
       const double expected = m.bytes_per_particle - 4 * (kEstimatedListEntries - entries) - (drift ? 0 : 24 - 20);
       // Within the cell offsets (the estimate's cells, one diameter, are more
       // than the run's) and a byte per particle: the fault flag, the pair
