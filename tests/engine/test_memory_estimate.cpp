@@ -97,5 +97,27 @@ TEST(MemoryEstimate, MatchesTheRunsPeakOnTheCpu) {
     }
 }
 
+// At a snapshot or checkpoint the particles touching a wall are selected with
+// their history (ParticleMover::wall_contact_history): the output then holds,
+// beside the run, their indices and one field of their history at a time
+// (the 12-byte springs of 12 slots at most), not an index per particle.
+TEST(MemoryEstimate, OutputHoldsOnlyTheWallContacts) {
+  const int side = 16;
+  SceneSpec scene = lattice_scene(side, kFriction);
+  const double face = 0.0159;  // the outer spheres 0.1 mm into the walls
+  scene.walls = {plane_wall({-face, 0, 0}, {1, 0, 0}), plane_wall({face, 0, 0}, {-1, 0, 0}),
+                 plane_wall({0, -face, 0}, {0, 1, 0}), plane_wall({0, face, 0}, {0, -1, 0}),
+                 plane_wall({0, 0, -face}, {0, 0, 1}), plane_wall({0, 0, face}, {0, 0, -1})};
+  Simulation sim(scene, RunOptions{Backend::cpu});
+  sim.run(5);
+  backend_reset_peak(Backend::cpu);
+  const std::size_t held = backend_peak_bytes(Backend::cpu);
+  const ParticleRecords r = sim.wall_contact_history();
+  const double m = double(r.id.size());
+  ASSERT_EQ(r.id.size(), std::size_t(side * side * side - (side - 2) * (side - 2) * (side - 2)));  // the outer shell
+  const double output = double(backend_peak_bytes(Backend::cpu) - held);
+  EXPECT_LE(output, m * (4 + 12 * 12) + 1024) << "bytes per particle " << output / (side * side * side);
+}
+
 }  // namespace
 }  // namespace gs::test
