@@ -42,6 +42,15 @@ class DeviceArray {
     }
     size_ = n;
   }
+  // For scratch whose contents need not survive: grows without copying, so
+  // the old and the new storage are never held at once (no peak of both).
+  void resize_discarding(std::size_t n) {
+    if (n > capacity_) {
+      release();
+      size_ = 0;
+    }
+    resize(n);
+  }
   void zero() { if (size_ > 0) backend_zero(backend_, data_, size_ * sizeof(T)); }
 
   std::vector<T> to_host() const {

@@ -125,6 +125,12 @@ void backend_synchronize(Backend b) {
 #endif
 }
 
+void backend_reset_peak(Backend b) {
+  Usage& u = usage(b);
+  std::lock_guard<std::mutex> lock(u.mutex);
+  u.peak = u.current;
+}
+
 std::size_t backend_peak_bytes(Backend b) {
   Usage& u = usage(b);
   std::lock_guard<std::mutex> lock(u.mutex);

@@ -15,5 +15,6 @@ void backend_copy(Backend b, void* dst, const void* src, std::size_t bytes);
 void backend_zero(Backend b, void* p, std::size_t bytes);
 void backend_synchronize(Backend b);
 std::size_t backend_peak_bytes(Backend b);  // high-water mark of backend_alloc
+void backend_reset_peak(Backend b);         // the high-water mark starts again from what is in use
 
 }  // namespace gs

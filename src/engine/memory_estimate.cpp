@@ -12,14 +12,14 @@ namespace gs {
 
 MemoryEstimate estimate_memory(const SceneSpec& scene) {
   const double real = fp32_forces(scene.precision) ? 4 : 8;
-  double per = 0;
+  MemoryEstimate m;
   const unsigned fields = particle_fields_kept(scene);
 #define GS_ADD_FIELD(name, type, bit) \
-  if ((bit) == kEveryRun || (fields & (bit)) != 0) per += sizeof(type);
+  if ((bit) == kEveryRun || (fields & (bit)) != 0) m.field_bytes += sizeof(type);
   GS_PARTICLE_FIELDS(GS_ADD_FIELD)
 #undef GS_ADD_FIELD
-  per += 3 * real;                                        // force
-  if (makes_torques(scene.effects)) per += 3 * real;      // torque
+  m.force_bytes = 3 * real;                                   // force
+  if (makes_torques(scene.effects)) m.force_bytes += 3 * real;  // torque
   const unsigned kept = history_fields_kept(scene.model, scene.effects);
   if (kept != 0) {
     double slot = sizeof(ParticleId);                     // partner id
@@ -28,16 +28,21 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   if (kept & (bit)) slot += wide ? sizeof(value<double>) : sizeof(value<float>);
     GS_HISTORY_FIELDS(GS_ADD_FIELD)
 #undef GS_ADD_FIELD
-    per += slot * scene.contact_slots;
+    m.history_bytes = slot * scene.contact_slots;
   }
-  per += 2 * 8 + 2 * 4;                                   // sort keys and indices, double-buffered
+  // Verlet list: offsets, fp32 reference positions, entries; the cell
+  // list's order of the particles (neighbor/verlet_list.hpp, cell_list.hpp).
+  m.list_bytes = sizeof(Index) + sizeof(Vec3f) + sizeof(Index) * kEstimatedListEntries + sizeof(Index);
+  // The staging buffer at its largest: a gather of the widest field (a
+  // position) when memory is re-sorted, or the sort's keys and second
+  // buffers while the cell list is built (engine/step_state.hpp).
+  m.staging_bytes = std::max<double>(sizeof(Vec3d), 2 * sizeof(std::uint64_t) + sizeof(Index));
+  m.bytes_per_particle = m.field_bytes + m.force_bytes + m.history_bytes + m.list_bytes + m.staging_bytes;
   const double r = largest_radius(scene);
-  MemoryEstimate m;
-  m.bytes_per_particle = per;
   if (r > 0) {
     const CellGrid g = make_cell_grid(scene.domain_min, scene.domain_max, 2 * r, periodic_box(scene));
     m.cells = g.cell_count();
-    m.cell_bytes = 2.0 * 4 * double(m.cells);
+    m.cell_bytes = double(sizeof(Index)) * double(m.cells + 1);  // the cells' offsets
   }
   const MeshSet& meshes = scene.meshes;
   if (r > 0 && meshes.n_meshes() > 0) {
@@ -48,7 +53,7 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
     // ownership and mesh id; per edge its ends.
     m.mesh_bytes = bins.bytes() + 48.0 * meshes.n_vertices() + 29.0 * meshes.n_triangles() + 8.0 * meshes.n_edges;
   }
-  m.total_bytes = per * double(particle_count(scene)) + m.cell_bytes + m.mesh_bytes;
+  m.total_bytes = m.bytes_per_particle * double(particle_count(scene)) + m.cell_bytes + m.mesh_bytes;
   return m;
 }
 

@@ -3,8 +3,18 @@
 
 namespace gs {
 
+// Neighbour-list entries per particle the estimate assumes: the twelve
+// neighbours of a sphere in a close-packed bed of equal spheres, all within
+// the default skin (a simple-cubic bed has six, a random dense one 7-10).
+constexpr double kEstimatedListEntries = 12;
+
 struct MemoryEstimate {
-  double bytes_per_particle = 0;  // particle state, forces, history, sort buffers
+  double bytes_per_particle = 0;  // the sum of the parts below
+  double field_bytes = 0;         // particle state (core/particle_fields.hpp), per particle
+  double force_bytes = 0;         // force and torque, per particle
+  double history_bytes = 0;       // contact history slots, per particle
+  double list_bytes = 0;          // Verlet list and the cell list's order, per particle
+  double staging_bytes = 0;       // the staging buffer at its largest, per particle
   double cell_bytes = 0;          // cell tables
   long long cells = 0;
   double mesh_bytes = 0;          // mesh arrays and their binning (a bound, walls/mesh.hpp)
@@ -13,10 +23,12 @@ struct MemoryEstimate {
   double total_bytes = 0;
 };
 
-// What a run of this scene holds in device memory, by the layout of
-// ParticleStore, the force arrays, the contact history, the cell list and the
-// meshes with their binning, at the smallest cells a run uses (one largest
-// diameter: the most cells).
+// What a run of this scene holds in device memory at its peak, by the layout
+// of ParticleStore, the force arrays, the contact history, the Verlet and
+// cell lists (kEstimatedListEntries entries per particle), the staging
+// buffer that also holds the sort's buffers, and the meshes with their
+// binning, at the smallest cells a run uses (one largest diameter: the most
+// cells). docs/PERFORMANCE.md ("Bytes per particle") lists the same parts.
 MemoryEstimate estimate_memory(const SceneSpec& scene);
 
 }  // namespace gs

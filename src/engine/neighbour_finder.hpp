@@ -12,10 +12,13 @@ namespace gs {
 template <class Exec>
 class NeighbourFinder final : public NeighbourSearch {
  public:
-  NeighbourFinder() : cells_(Exec::backend), verlet_(Exec::backend) {}
+  // `scratch`: the step's staging buffer (engine/step_state.hpp), which
+  // holds the cell list's sort buffers while it is built.
+  explicit NeighbourFinder(DeviceArray<unsigned char>& scratch)
+      : cells_(Exec::backend), verlet_(Exec::backend), scratch_(scratch) {}
 
   void build_cell_list(const ParticleStore& s, const CellGrid& grid) override {
-    build_cells<Exec>(cells_, s.position.data(), s.id.data(), s.size(), grid);
+    build_cells<Exec>(cells_, s.position.data(), s.id.data(), s.size(), grid, scratch_);
     verlet_.valid = false;
   }
   const DeviceArray<Index>& cell_order() const override { return cells_.sorted; }
@@ -34,7 +37,7 @@ class NeighbourFinder final : public NeighbourSearch {
              (check_moves && verlet_list_stale<Exec>(verlet_, s.position.data(), s.n_owned, s.size()));
     return true;
   }
-  std::size_t bytes() const override { return cells_.bytes() + verlet_.bytes(); }
+  std::size_t bytes() const override { return cells_.bytes() + verlet_.bytes(); }  // not scratch_: the mover's
 
   // What the force computation reads.
   CellCandidates cell_candidates(const ParticleStore& s) const {
@@ -51,6 +54,7 @@ class NeighbourFinder final : public NeighbourSearch {
  private:
   CellList cells_;
   VerletList verlet_;  // empty where Exec::verlet_list is false
+  DeviceArray<unsigned char>& scratch_;
   std::uint64_t built_at_ = 0;  // the store's revision at the Verlet list's build
 };
 

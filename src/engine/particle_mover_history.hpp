@@ -8,7 +8,7 @@ namespace gs {
 
 template <class Exec, class T>
 void gather_in_place(DeviceArray<T>& a, const Index* order, Index n, DeviceArray<unsigned char>& scratch) {
-  scratch.resize(std::size_t(n) * sizeof(T));
+  scratch.resize_discarding(std::size_t(n) * sizeof(T));
   T* tmp = reinterpret_cast<T*>(scratch.data());
   Exec::parallel_for(n, Gather<T>{a.data(), tmp, order});
   backend_copy(Exec::backend, a.data(), tmp, std::size_t(n) * sizeof(T));
@@ -35,7 +35,7 @@ template <class Exec, class T>
 void gather_slots_in_place(DeviceArray<T>& a, const Index* order, Index n, int slots, const HistoryStrides& strides,
                            DeviceArray<unsigned char>& scratch) {
   if (a.size() == 0) return;
-  scratch.resize(std::size_t(n) * sizeof(T));
+  scratch.resize_discarding(std::size_t(n) * sizeof(T));
   T* tmp = reinterpret_cast<T*>(scratch.data());
   const std::size_t step = strides.particle_stride;
   for (int s = 0; s < slots; ++s) {

@@ -42,7 +42,7 @@ struct ScatterHistory {
 // allocating device memory every step would cost more than the copies.
 template <class T>
 T* staging(DeviceArray<unsigned char>& scratch, std::size_t n) {
-  scratch.resize(n * sizeof(T));
+  scratch.resize_discarding(n * sizeof(T));
   return reinterpret_cast<T*>(scratch.data());
 }
 
@@ -225,17 +225,23 @@ ParticleRecords ParticleMover<Exec, Real>::wall_contact_history(const ParticleSt
   ParticleRecords r;
   r.history.slots = st_.history.slots;
   if (!st_.keeps_history() || s.n_owned == 0) return r;
-  DeviceArray<Index> which(Exec::backend, std::size_t(s.n_owned));
+  // Selected into the staging buffer (an index per owned particle); only the
+  // m selected are kept apart, so the output holds 4 bytes per particle on a
+  // wall beside the run, not 4 per particle.
+  DeviceArray<unsigned char>& selected = st_.staging;
+  selected.resize_discarding(std::size_t(s.n_owned) * sizeof(Index));
+  DeviceArray<unsigned char> selection_storage(Exec::backend);
   const Index m = Exec::select(s.n_owned, TouchesWall{st_.history.partner.data(), st_.history.strides, st_.history.slots},
-                               which.data(), st_.staging);
-  which.resize(std::size_t(m));
+                               reinterpret_cast<Index*>(selected.data()), selection_storage);
   if (m == 0) return r;
+  DeviceArray<Index> which(Exec::backend, std::size_t(m));
+  backend_copy(Exec::backend, which.data(), selected.data(), std::size_t(m) * sizeof(Index));
   DeviceArray<unsigned char> block(Exec::backend);
   // Rows i * slots + k of field, widened to the host type of `rows`.
   auto fetch = [&](const auto& field, auto& rows) {
     using T = typename std::decay_t<decltype(field)>::value_type;
     using Host = typename std::decay_t<decltype(rows)>::value_type;
-    block.resize(std::size_t(m) * sizeof(T) * std::size_t(st_.history.slots));
+    block.resize_discarding(std::size_t(m) * sizeof(T) * std::size_t(st_.history.slots));
     gather_history_into<Exec>(field, which, st_.history.slots, st_.history.strides, block.data());
     std::vector<T> packed(std::size_t(m) * std::size_t(st_.history.slots));
     backend_copy_to_host(Exec::backend, packed.data(), block.data(), packed.size() * sizeof(T));
@@ -243,7 +249,7 @@ ParticleRecords ParticleMover<Exec, Real>::wall_contact_history(const ParticleSt
     rows.resize(device_rows.size());
     for (std::size_t e = 0; e < rows.size(); ++e) rows[e] = Host(device_rows[e]);
   };
-  block.resize(std::size_t(m) * sizeof(ParticleId));
+  block.resize_discarding(std::size_t(m) * sizeof(ParticleId));
   gather_into<Exec>(s.id, which, block.data());
   r.id.resize(std::size_t(m));
   backend_copy_to_host(Exec::backend, r.id.data(), block.data(), r.id.size() * sizeof(ParticleId));

@@ -30,8 +30,12 @@ struct StepState {
   ForceArrays<Real> forces;
   ContactHistory<Real> history;
   DeviceArray<Fault> fault;  // the first fault of a step (core/fault.hpp)
-  // Reused staging for data movement (reorder, migration, ghosts): allocating
-  // device memory every step would cost more than the copies.
+  // Reused staging for data movement (reorder, migration, ghosts) and for the
+  // cell list's sort keys and second buffers while it is built
+  // (neighbor/cell_list.hpp): allocating device memory every step would cost
+  // more than the copies, and one buffer for all of them keeps only the
+  // largest at the peak. It holds nothing from one call to the next: a user
+  // must be done with it (on the stream) before it returns.
   DeviceArray<unsigned char> staging;
 };
 

@@ -15,20 +15,25 @@
 namespace gs {
 
 struct CellList {
-  explicit CellList(Backend b)
-      : keys(b), keys_alt(b), sorted(b), sorted_alt(b), cell_begin(b), sort_scratch(b) {}
+  explicit CellList(Backend b) : sorted(b), cell_begin(b) {}
 
   CellGrid grid;
-  DeviceArray<std::uint64_t> keys, keys_alt;
-  DeviceArray<Index> sorted, sorted_alt;
+  DeviceArray<Index> sorted;      // particle indices in (cell, id) order
   DeviceArray<Index> cell_begin;  // per cell + 1: offsets in `sorted`
-  DeviceArray<unsigned char> sort_scratch;
-  int key_bits = 64;
 
-  std::size_t bytes() const {
-    return keys.bytes() + keys_alt.bytes() + sorted.bytes() + sorted_alt.bytes() + cell_begin.bytes() +
-           sort_scratch.bytes();
-  }
+  std::size_t bytes() const { return sorted.bytes() + cell_begin.bytes(); }
+};
+
+// The pairs a radix sort orders: keys carrying indices, each with a second
+// buffer of the same length (the passes alternate between the two). On
+// return `keys` and `values` point to the sorted pairs, in either buffer.
+struct SortPairs {
+  std::uint64_t* keys;
+  std::uint64_t* keys_alt;
+  Index* values;
+  Index* values_alt;
+  Index n;
+  int key_bits;  // the keys' significant low bits
 };
 
 struct CellKeys {
@@ -36,10 +41,10 @@ struct CellKeys {
   const ParticleId* id;
   CellGrid grid;
   std::uint64_t* keys;
-  Index* sorted;
+  Index* values;
   GS_HD void operator()(Index i) const {
     keys[i] = (std::uint64_t(grid.linear(grid.coord(position[i]))) << 32) | id[i];
-    sorted[i] = i;
+    values[i] = i;
   }
 };
 
@@ -133,21 +138,46 @@ inline int bits_needed(std::uint64_t v) {
   return b;
 }
 
+// Where the sort's keys, its second buffers and its own storage go in the
+// scratch buffer: offsets of 256-byte aligned parts.
+struct SortLayout {
+  std::size_t keys = 0, keys_alt = 0, values_alt = 0, storage = 0, total = 0;
+  static std::size_t aligned(std::size_t b) { return (b + 255) / 256 * 256; }
+  SortLayout(Index n, std::size_t storage_bytes) {
+    const std::size_t k = aligned(std::size_t(n) * sizeof(std::uint64_t)), v = aligned(std::size_t(n) * sizeof(Index));
+    keys_alt = k;
+    values_alt = 2 * k;
+    storage = 2 * k + v;
+    total = storage + storage_bytes;
+  }
+};
+
+// Bins particles [0, n) into the grid's cells. The keys and the sort's
+// second buffers live in `scratch` only during this call (the step's staging
+// buffer, which holds nothing between calls: engine/step_state.hpp), so a
+// run does not keep 20 bytes per particle of sort buffers beside the
+// staging buffer it needs anyway.
 template <class Exec>
-void build_cells(CellList& c, const Vec3d* position, const ParticleId* id, Index n, const CellGrid& grid) {
+void build_cells(CellList& c, const Vec3d* position, const ParticleId* id, Index n, const CellGrid& grid,
+                 DeviceArray<unsigned char>& scratch) {
   c.grid = grid;
-  c.keys.resize(n);
-  c.keys_alt.resize(n);
-  c.sorted.resize(n);
-  c.sorted_alt.resize(n);
-  c.cell_begin.resize(std::size_t(grid.cell_count()) + 1);
-  c.key_bits = 32 + bits_needed(std::uint64_t(grid.cell_count() - 1));
-  Exec::parallel_for(n, CellKeys{position, id, grid, c.keys.data(), c.sorted.data()});
-  Exec::sort_pairs(c, n);
+  c.sorted.resize_discarding(std::size_t(n));  // both rewritten whole
+  c.cell_begin.resize_discarding(std::size_t(grid.cell_count()) + 1);
+  const int key_bits = 32 + bits_needed(std::uint64_t(grid.cell_count() - 1));
+  const std::size_t storage_bytes = Exec::sort_storage_bytes(n, key_bits);
+  const SortLayout at(n, storage_bytes);
+  scratch.resize_discarding(at.total);
+  unsigned char* base = scratch.data();
+  SortPairs p{reinterpret_cast<std::uint64_t*>(base + at.keys), reinterpret_cast<std::uint64_t*>(base + at.keys_alt),
+              c.sorted.data(), reinterpret_cast<Index*>(base + at.values_alt), n, key_bits};
+  Exec::parallel_for(n, CellKeys{position, id, grid, p.keys, p.values});
+  Exec::sort_pairs(p, base + at.storage, storage_bytes);
+  if (p.values != c.sorted.data() && n > 0)
+    backend_copy(Exec::backend, c.sorted.data(), p.values, std::size_t(n) * sizeof(Index));
   if constexpr (Exec::cell_begins_by_particle)
-    Exec::parallel_for(n + 1, CellBeginsByParticle{c.keys.data(), n, grid.cell_count(), c.cell_begin.data()});
+    Exec::parallel_for(n + 1, CellBeginsByParticle{p.keys, n, grid.cell_count(), c.cell_begin.data()});
   else
-    Exec::parallel_for(Index(grid.cell_count() + 1), CellBeginsByCell{c.keys.data(), n, c.cell_begin.data()});
+    Exec::parallel_for(Index(grid.cell_count() + 1), CellBeginsByCell{p.keys, n, c.cell_begin.data()});
 }
 
 }  // namespace gs

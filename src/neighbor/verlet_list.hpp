@@ -19,7 +19,8 @@
 // costs more than reading a short list of 4-byte indices (six entries per
 // sphere in a touching lattice at skin 0.1 diameters), rebuilt only when a
 // particle has moved half the skin. Its memory: 4 bytes per entry, 4 per
-// particle of offsets and 24 of reference position (docs/PERFORMANCE.md).
+// particle of offsets and 12 of reference position (fp32: see MovedBeyond;
+// docs/PERFORMANCE.md).
 // The GPU builds it in two passes over the cells (count; a scan turns the
 // counts into offsets; fill and sort each particle's entries in place:
 // ListCountKernel, ListFillKernel); only the total comes back to the host,
@@ -27,6 +28,7 @@
 // reads after the step's kick-drift (CudaExec::any): one wait for the device
 // per step, a few microseconds against the milliseconds of a large bed's step.
 // Ranks skip it: the halo's vote has measured the same moves.
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -38,21 +40,27 @@
 
 namespace gs {
 
+// Offsets into the list: unsigned 32-bit, so a list of up to 2^32 - 1
+// entries (4e8 spheres of ten neighbours) costs 4 bytes per particle, not 8.
+// A build that would hold more is refused (OffsetsWrapped).
+using ListOffset = std::uint32_t;
+
 // Contact candidates of particle i from the list, in ascending id.
 struct ListCandidates {
-  const Index* begin;  // per owned particle + 1: i's entries are list[begin[i], begin[i + 1])
-  const Index* list;   // store indices of the neighbours
+  const ListOffset* begin;  // per owned particle + 1: i's entries are list[begin[i], begin[i + 1])
+  const Index* list;        // store indices of the neighbours
   template <class Visit>
   GS_HD GS_INLINE void for_each(Index i, const Vec3d& /*xi*/, Visit& visit) const {
-    for (Index k = begin[i]; k < begin[i + 1]; ++k) visit(list[k]);
+    for (ListOffset k = begin[i]; k < begin[i + 1]; ++k) visit(list[k]);
   }
 };
 
 struct VerletList {
   explicit VerletList(Backend b) : begin(b), list(b), reference(b), scan_scratch(b) {}
 
-  DeviceArray<Index> begin, list;
-  DeviceArray<Vec3d> reference;  // owned particles' positions at the build
+  DeviceArray<ListOffset> begin;
+  DeviceArray<Index> list;
+  DeviceArray<Vec3f> reference;  // owned particles' positions at the build, rounded to fp32
   PeriodicBox box;               // the grid's at the build: moves are measured to the nearest image
   std::vector<std::vector<Index>> parts;  // per thread, while building (CPU)
   DeviceArray<unsigned char> scan_scratch;  // the count scan's (GPU), sized at its first use
@@ -88,14 +96,33 @@ GS_HD GS_INLINE void sort_by_id(Index* out, Index n, const ParticleId* id) {
   }
 }
 
-// Whether owned particle i has moved more than `limit` since the build (a
-// particle wrapped across a periodic face has moved by its nearest image).
+// The reference positions: fp32 roundings of the positions at the build.
+struct RoundReference {
+  const Vec3d* position;
+  Vec3f* reference;
+  GS_HD void operator()(Index i) const { reference[i] = Vec3f(position[i]); }
+};
+
+// Whether owned particle i may have moved more than `limit` since the build
+// (a particle wrapped across a periodic face has moved by its nearest image).
+// Why fp32 references suffice: rounding to nearest moves a coordinate c by at
+// most 2^-24 |c|, so the position at the build lies within
+// 2^-24 (|r.x| + |r.y| + |r.z|) of its reference r; that much (doubled, for
+// the fp64 arithmetic of the test itself) is taken off the limit, so the
+// test can only answer "moved" early, never late. A metre from the origin
+// the margin is 0.36 um, against half a skin of 50 um for 1 mm spheres.
 struct MovedBeyond {
   const Vec3d* position;
-  const Vec3d* reference;
+  const Vec3f* reference;
   double limit;
   PeriodicBox box;
-  GS_HD bool operator()(Index i) const { return norm2(box.separation(position[i], reference[i])) > limit * limit; }
+  GS_HD bool operator()(Index i) const {
+    const Vec3f r = reference[i];
+    const double rounding = 0x1p-23 * (std::fabs(double(r.x)) + std::fabs(double(r.y)) + std::fabs(double(r.z))) +
+                            0x1p-126;  // subnormal roundings: below the smallest normal fp32
+    const double reach = limit - rounding;
+    return !(reach > 0) || norm2(box.separation(position[i], Vec3d(r))) > reach * reach;
+  }
 };
 
 // Counts particle i's neighbours into count[i + 1] (count[0] = 0): the GPU's
@@ -103,10 +130,10 @@ struct MovedBeyond {
 struct ListCountKernel {
   CellCandidates cells;
   WithinSkin near;
-  Index* count;
+  ListOffset* count;
   GS_HD void operator()(Index i) const {
     const Vec3d xi = near.position[i];
-    Index n = 0;
+    ListOffset n = 0;
     auto tally = [&](Index j) { n += near(i, j, xi) ? 1 : 0; };
     cells.for_each(i, xi, tally);
     count[i + 1] = n;
@@ -120,7 +147,7 @@ struct ListFillKernel {
   CellCandidates cells;
   WithinSkin near;
   const ParticleId* id;
-  const Index* begin;
+  const ListOffset* begin;
   Index* list;
   GS_HD void operator()(Index i) const {
     const Vec3d xi = near.position[i];
@@ -134,6 +161,14 @@ struct ListFillKernel {
   }
 };
 
+// Whether the scan of the counts into offsets wrapped past 2^32 (a list too
+// long for 32-bit offsets): each count is below 2^32, so a running sum that
+// wrapped is smaller than the one before it somewhere.
+struct OffsetsWrapped {
+  const ListOffset* begin;
+  GS_HD bool operator()(Index i) const { return begin[i + 1] < begin[i]; }
+};
+
 // Builds the list of the n_owned first particles against all n_total of the
 // cell list `cells` (owned and ghosts). Exec::fill_verlet_list finds the
 // neighbours, in the backend's memory.
@@ -143,7 +178,7 @@ void build_verlet_list(VerletList& v, const CellList& cells, const Vec3d* positi
   Exec::fill_verlet_list(v, CellCandidates{cells.grid, cells.sorted.data(), cells.cell_begin.data()},
                          WithinSkin{position, radius, skin, cells.grid.box}, id, n_owned);
   v.reference.resize(std::size_t(n_owned));
-  backend_copy(Exec::backend, v.reference.data(), position, std::size_t(n_owned) * sizeof(Vec3d));
+  Exec::parallel_for(n_owned, RoundReference{position, v.reference.data()});
   v.skin = skin;
   v.box = cells.grid.box;
   v.n_owned = n_owned;

@@ -319,8 +319,9 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
             "unpack %.0f%%; halo rebuilt %lld times, forwarded %lld times\n", 100 * x.route / sum, 100 * x.pack / sum,
             100 * x.transfer / sum, 100 * x.unpack / sum, x.rebuilds, x.forwards);
   }
-  out.log("peak %s memory (rank 0): %s\n", backend_name(sim.backend()),
-          human_bytes(double(backend_peak_bytes(sim.backend()))).c_str());
+  const double peak = double(backend_peak_bytes(sim.backend()));
+  out.log("peak %s memory (rank 0): %s, %.1f bytes per owned particle\n", backend_name(sim.backend()),
+          human_bytes(peak).c_str(), sim.particle_count() > 0 ? peak / double(sim.particle_count()) : 0.0);
   return 0;
 }
 

@@ -42,6 +42,7 @@ Cloud random_cloud(int n, double box, unsigned seed) {
 
 struct BuiltList {
   CellList cells{Backend::cpu};
+  DeviceArray<unsigned char> scratch{Backend::cpu};  // the sort buffers
   VerletList list{Backend::cpu};
   DeviceArray<Vec3d> position{Backend::cpu};
   DeviceArray<float> radius{Backend::cpu};
@@ -55,7 +56,7 @@ void build(BuiltList& b, const Cloud& c, Index n_owned, double skin, double box)
   b.id.from_host(c.id);
   const Index n = Index(c.position.size());
   const CellGrid grid = make_cell_grid({0, 0, 0}, {box, box, box}, 2 * kLarge + skin);
-  build_cells<CpuExec>(b.cells, b.position.data(), b.id.data(), n, grid);
+  build_cells<CpuExec>(b.cells, b.position.data(), b.id.data(), n, grid, b.scratch);
   build_verlet_list<CpuExec>(b.list, b.cells, b.position.data(), b.radius.data(), b.id.data(), n_owned, n, skin);
 }
 
@@ -65,7 +66,8 @@ TEST(VerletList, HoldsExactlyThePairsWithinTheSkinInIdOrder) {
   const Index n_owned = 5000;  // the last 1000 stand for ghosts: partners, not list owners
   BuiltList b;
   build(b, c, n_owned, skin, box);
-  const std::vector<Index> begin = b.list.begin.to_host(), list = b.list.list.to_host();
+  const std::vector<ListOffset> begin = b.list.begin.to_host();
+  const std::vector<Index> list = b.list.list.to_host();
   ASSERT_EQ(begin.size(), std::size_t(n_owned) + 1);
   long long pairs = 0, large_small = 0;
   for (Index i = 0; i < n_owned; ++i) {

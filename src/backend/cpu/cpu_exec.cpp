@@ -25,11 +25,12 @@ Index chunk_begin(Index n, int t, int threads) { return Index(std::int64_t(n) * 
 // in order (the common case between two reorders of a slowly moving bed)
 // cost one read; digits in which no two keys differ (the unused high bits of
 // ids and cells) are skipped.
-void CpuExec::sort_pairs(CellList& c, Index n) {
-  std::uint64_t* keys = c.keys.data();
-  std::uint64_t* keys_out = c.keys_alt.data();
-  Index* values = c.sorted.data();
-  Index* values_out = c.sorted_alt.data();
+void CpuExec::sort_pairs(SortPairs& p, void* /*storage*/, std::size_t /*bytes*/) {
+  const Index n = p.n;
+  std::uint64_t* keys = p.keys;
+  std::uint64_t* keys_out = p.keys_alt;
+  Index* values = p.values;
+  Index* values_out = p.values_alt;
   if (n <= 1) return;
   bool in_order = true;
   std::uint64_t varying = 0;
@@ -73,10 +74,8 @@ void CpuExec::sort_pairs(CellList& c, Index n) {
     shift += kDigitBits;
   }
   // After an odd number of passes the result sits in the alternate buffers.
-  if (keys != c.keys.data()) {
-    c.keys.swap(c.keys_alt);
-    c.sorted.swap(c.sorted_alt);
-  }
+  p.keys = keys;
+  p.values = values;
 }
 
 }  // namespace gs

@@ -58,8 +58,9 @@ struct CpuExec {
   static void fill_verlet_list(VerletList& v, const CellCandidates& cells, const WithinSkin& near,
                                const ParticleId* id, Index n_owned);
 
-  // Sorts c.keys[0,n) ascending, carrying c.sorted along.
-  static void sort_pairs(CellList& c, Index n);
+  // Sorts p's keys ascending, carrying the values along (no storage of its own).
+  static std::size_t sort_storage_bytes(Index /*n*/, int /*key_bits*/) { return 0; }
+  static void sort_pairs(SortPairs& p, void* /*storage*/, std::size_t /*bytes*/);
   static void synchronize() {}
 };
 

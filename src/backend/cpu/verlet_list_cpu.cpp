@@ -1,6 +1,9 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
 
 #include "backend/cpu/cpu_exec.hpp"
 
@@ -28,8 +31,9 @@ struct AppendNeighbours {
 void CpuExec::fill_verlet_list(VerletList& v, const CellCandidates& cells, const WithinSkin& near,
                                const ParticleId* id, Index n_owned) {
   v.begin.resize(std::size_t(n_owned) + 1);
-  Index* begin = v.begin.data();
+  ListOffset* begin = v.begin.data();
   begin[0] = 0;
+  bool too_long = false;  // set by one thread, read after the barrier of `single`
 #pragma omp parallel if (n_owned >= kSerialBelow)
   {
     const int threads = omp_get_num_threads(), t = omp_get_thread_num();
@@ -44,16 +48,19 @@ void CpuExec::fill_verlet_list(VerletList& v, const CellCandidates& cells, const
       const AppendNeighbours append{&near, i, near.position[i], &out};
       cells.for_each(i, append.xi, append);
       sort_by_id(out.data() + from, Index(out.size() - from), id);
-      begin[i + 1] = Index(out.size() - from);
+      begin[i + 1] = ListOffset(out.size() - from);
     }
 #pragma omp barrier
 #pragma omp single
     {
-      for (Index i = 0; i < n_owned; ++i) begin[i + 1] += begin[i];
-      v.list.resize(std::size_t(begin[n_owned]));
+      std::uint64_t total = 0;
+      for (Index i = 0; i < n_owned; ++i) begin[i + 1] = ListOffset(total += begin[i + 1]);
+      if (total > std::numeric_limits<ListOffset>::max()) too_long = true;
+      else v.list.resize_discarding(std::size_t(total));  // rewritten whole: no copy of the old
     }
-    std::copy(out.begin(), out.end(), v.list.data() + begin[first]);
+    if (!too_long) std::copy(out.begin(), out.end(), v.list.data() + begin[first]);
   }
+  if (too_long) throw std::runtime_error("the Verlet list would hold 2^32 entries or more (32-bit offsets)");
 }
 
 }  // namespace gs

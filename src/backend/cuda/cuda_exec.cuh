@@ -81,16 +81,22 @@ struct CudaExec {
     GS_CUDA_CHECK(cudaGetLastError());
   }
 
-  static void sort_pairs(CellList& c, Index n) {
-    cub::DoubleBuffer<std::uint64_t> keys(c.keys.data(), c.keys_alt.data());
-    cub::DoubleBuffer<Index> values(c.sorted.data(), c.sorted_alt.data());
-    std::size_t scratch_bytes = 0;
-    GS_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, scratch_bytes, keys, values, n, 0, c.key_bits));
-    c.sort_scratch.resize(scratch_bytes);
-    GS_CUDA_CHECK(
-        cub::DeviceRadixSort::SortPairs(c.sort_scratch.data(), scratch_bytes, keys, values, n, 0, c.key_bits));
-    if (keys.Current() != c.keys.data()) c.keys.swap(c.keys_alt);
-    if (values.Current() != c.sorted.data()) c.sorted.swap(c.sorted_alt);
+  // Bytes of CUB's own storage for sort_pairs of n keys.
+  static std::size_t sort_storage_bytes(Index n, int key_bits) {
+    cub::DoubleBuffer<std::uint64_t> keys(nullptr, nullptr);
+    cub::DoubleBuffer<Index> values(nullptr, nullptr);
+    std::size_t bytes = 0;
+    GS_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, keys, values, n, 0, key_bits));
+    return bytes;
+  }
+  // Sorts p's keys ascending, carrying the values along, with `bytes` of
+  // storage (sort_storage_bytes) at `storage`.
+  static void sort_pairs(SortPairs& p, void* storage, std::size_t bytes) {
+    cub::DoubleBuffer<std::uint64_t> keys(p.keys, p.keys_alt);
+    cub::DoubleBuffer<Index> values(p.values, p.values_alt);
+    GS_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(storage, bytes, keys, values, p.n, 0, p.key_bits));
+    p.keys = keys.Current();
+    p.values = values.Current();
   }
 
   // Writes the indices i in [0, n) with pred(i), ascending, to out; returns
@@ -102,7 +108,7 @@ struct CudaExec {
     std::size_t bytes = 0;
     GS_CUDA_CHECK(cub::DeviceSelect::If(nullptr, bytes, first, out, static_cast<Index*>(nullptr), n, pred));
     constexpr std::size_t kCountBytes = 256;  // the count first, CUB's storage aligned after it
-    scratch.resize(kCountBytes + bytes);
+    scratch.resize_discarding(kCountBytes + bytes);
     Index* count = reinterpret_cast<Index*>(scratch.data());
     GS_CUDA_CHECK(cub::DeviceSelect::If(scratch.data() + kCountBytes, bytes, first, out, count, n, pred));
     Index m = 0;
@@ -132,22 +138,22 @@ struct CudaExec {
   static void fill_verlet_list(VerletList& v, const CellCandidates& cells, const WithinSkin& near,
                                const ParticleId* id, Index n_owned) {
     v.begin.resize(std::size_t(n_owned) + 1);
-    Index* begin = v.begin.data();
+    ListOffset* begin = v.begin.data();
     if (n_owned == 0) {
-      GS_CUDA_CHECK(cudaMemset(begin, 0, sizeof(Index)));
+      GS_CUDA_CHECK(cudaMemset(begin, 0, sizeof(ListOffset)));
       v.list.resize(0);
       return;
     }
     parallel_for(n_owned, ListCountKernel{cells, near, begin});
     std::size_t bytes = 0;
     GS_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, bytes, begin + 1, begin + 1, n_owned));
-    v.scan_scratch.resize(bytes);
+    v.scan_scratch.resize_discarding(bytes);
     GS_CUDA_CHECK(cub::DeviceScan::InclusiveSum(v.scan_scratch.data(), bytes, begin + 1, begin + 1, n_owned));
-    Index total = 0;
-    GS_CUDA_CHECK(cudaMemcpy(&total, begin + n_owned, sizeof(Index), cudaMemcpyDeviceToHost));
-    // 2^31 entries and more wrap in 32-bit offsets (3.6e8 spheres of six neighbours each).
-    if (total < 0) throw std::runtime_error("the Verlet list would hold 2^31 entries or more");
-    v.list.resize(std::size_t(total));
+    if (any(n_owned, OffsetsWrapped{begin}))
+      throw std::runtime_error("the Verlet list would hold 2^32 entries or more (32-bit offsets)");
+    ListOffset total = 0;
+    GS_CUDA_CHECK(cudaMemcpy(&total, begin + n_owned, sizeof(ListOffset), cudaMemcpyDeviceToHost));
+    v.list.resize_discarding(std::size_t(total));  // rewritten whole: no copy of the old
     parallel_for(n_owned, ListFillKernel{cells, near, id, begin, v.list.data()});
   }
 
