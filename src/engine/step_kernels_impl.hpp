@@ -35,7 +35,7 @@ class StepKernelsOf final : public StepKernels {
  public:
   StepKernelsOf(const KernelChoice& c, const ContactInputs& in)
       : state_(Exec::backend, history_fields_kept(c.model, c.effects), makes_torques(c.effects), in.contact_slots),
-        mover_(state_), remover_(mover_), integrator_(state_),
+        mover_(state_), remover_(mover_), integrator_(state_, finder_),
         forces_(dispatch_forces<Exec, Real>(c, in, state_, finder_)) {}
 
   ParticleMovement& movement() override { return mover_; }

@@ -23,10 +23,12 @@
 // The GPU builds it in two passes over the cells (count; a scan turns the
 // counts into offsets; fill and sort each particle's entries in place:
 // ListCountKernel, ListFillKernel); only the total comes back to the host,
-// to size the list. Its staleness is one flag the device sets and the host
-// reads after the step's kick-drift (CudaExec::any): one wait for the device
-// per step, a few microseconds against the milliseconds of a large bed's step.
-// Ranks skip it: the halo's vote has measured the same moves.
+// to size the list.
+//
+// Its staleness, on one rank, is read one step late, so that the host never
+// waits for the device inside a step (ListWatch below; docs/DESIGN.md, "The
+// step's data flow"). Ranks skip it: the halo's vote has measured the same
+// moves.
 #include <cstdint>
 #include <vector>
 
@@ -88,14 +90,68 @@ GS_HD GS_INLINE void sort_by_id(Index* out, Index n, const ParticleId* id) {
   }
 }
 
-// Whether owned particle i has moved more than `limit` since the build (a
-// particle wrapped across a periodic face has moved by its nearest image).
-struct MovedBeyond {
-  const Vec3d* position;
-  const Vec3d* reference;
-  double limit;
+// What a watched kick-drift tells the host about the list (ListWatch): ints,
+// set to 1 by any particle, never cleared by a kernel.
+struct ListVerdict {
+  int stale_next = 0;   // the list may not cover the next step's contacts: rebuild before them
+  int fast = 0;         // a list built on these positions would not cover the next step's either
+  int stale_now = 0;    // a particle is more than half the skin from where the list saw it
+};
+
+// The margin delta by which a single rank's list is rebuilt ahead of half the
+// skin, as a fraction of the skin: the verdict of step n is read only at step
+// n + 1, once that step's drift has run (docs/DESIGN.md). delta bounds how
+// much farther a particle may move in step n + 1 than it moved in step n
+// (|a| dt^2, the acceleration of the forces of step n). A tenth of the skin
+// makes a slow bed's list rebuild about an eighth sooner than at half the
+// skin; |a| dt^2 is a tenth of a contact's overlap at the stable step limit
+// (docs/STABILITY.md), so it takes an overlap of about a tenth of a diameter
+// (at a skin of 0.1 diameters) to exceed it: a blow-up, reported as a fault.
+constexpr double kListMarginOfSkin = 0.1;
+
+// Sets a verdict's flag: many threads may store the same 1 (relaxed atomics
+// on the host, where a plain race would be undefined).
+GS_HD GS_INLINE void raise_flag(int& flag) {
+#if defined(__CUDA_ARCH__)
+  flag = 1;
+#else
+  __atomic_store_n(&flag, 1, __ATOMIC_RELAXED);
+#endif
+}
+
+// The check of owned particle i after its drift in step n, against the list
+// built on `reference` (null where the list no longer describes the store:
+// it is rebuilt anyway). With D its distance from where the list saw it (to
+// the nearest image: a wrapped particle has moved by that), m this step's
+// move and delta the margin:
+//   stale_next where D + m + delta > skin / 2. Where the host finds none at
+//     step n + 1, every particle is within skin / 2 then, as long as the
+//     step n + 1 moves it at most m + delta: the guard, checked in step
+//     n + 1's own drift (`jolt` below), makes sure it does;
+//   fast where m + delta > skin / 2 (a list built after this drift is stale
+//     after the next one, for the same reason);
+//   stale_now where D > skin / 2 (read at once: the first step of a run,
+//     which has no verdict of a step before it).
+struct ListWatch {
+  const Vec3d* reference = nullptr;
   PeriodicBox box;
-  GS_HD bool operator()(Index i) const { return norm2(box.separation(position[i], reference[i])) > limit * limit; }
+  double half_skin = 0, margin = 0;
+  ListVerdict* verdict = nullptr;  // null: not watched (ranks, or no skin)
+
+  GS_HD bool active() const { return verdict != nullptr; }
+  // Whether a step whose kick had acceleration `a` may move a particle
+  // farther than this one by more than the margin allows: jolt = |a| dt^2.
+  // Nine tenths of it: the tenth left covers the rounding of positions and
+  // velocities to fp32 (a few 1e-7 of a coordinate per step).
+  GS_HD bool too_sudden(double jolt) const { return jolt > 0.9 * margin; }
+  GS_HD void operator()(Index i, const Vec3d& x, double move) const {
+    const double ahead = move + margin;
+    if (ahead > half_skin) raise_flag(verdict->fast);
+    if (!reference) return;
+    const double d = norm(box.separation(x, reference[i]));
+    if (d + ahead > half_skin) raise_flag(verdict->stale_next);
+    if (d > half_skin) raise_flag(verdict->stale_now);
+  }
 };
 
 // Counts particle i's neighbours into count[i + 1] (count[0] = 0): the GPU's
@@ -149,13 +205,6 @@ void build_verlet_list(VerletList& v, const CellList& cells, const Vec3d* positi
   v.n_owned = n_owned;
   v.n_total = n_total;
   v.valid = true;
-}
-
-// Whether the list no longer covers every contact of the store.
-template <class Exec>
-bool verlet_list_stale(const VerletList& v, const Vec3d* position, Index n_owned, Index n_total) {
-  if (!v.valid || v.n_owned != n_owned || v.n_total != n_total) return true;
-  return Exec::any(n_owned, MovedBeyond{position, v.reference.data(), 0.5 * v.skin, v.box});
 }
 
 }  // namespace gs
