@@ -80,6 +80,23 @@ TEST_P(ListLagRun, RebuildsWhereTheLaggedRuleSays) {
   }
 }
 
+// A sphere moving 0.45 skins a step: m + delta exceeds half the skin, so even
+// a list built on the positions of a step may not cover the next: rebuilt
+// at every step (the verdict `fast`), from the first that has one before it.
+TEST_P(ListLagRun, FastSphereRebuildsEveryStep) {
+  SceneSpec scene = base_scene(2500, 1000, 0.5);
+  scene.gravity = {0, 0, 0};
+  scene.time_step = 1e-5;
+  RunOptions options{GetParam()};
+  const double skin = options.verlet_skin * 2 * kRadius;
+  scene.particles.push_back(particle(0, kRadius, {-0.015, 0, 0}, {0.45 * skin / scene.time_step, 0, 0}));
+  Simulation sim(scene, options);
+  sim.run(1);
+  EXPECT_EQ(sim.neighbour_builds(), 0);  // 0.45 skins from where the list saw it: still within half
+  sim.run(20);
+  EXPECT_EQ(sim.neighbour_builds(), 20);
+}
+
 // A sphere of mass m pressed 0.1 mm into a floor of stiffness k = 1000 N/m
 // starts with |a| = k * 0.1 mm / m - g. At dt = 72 us, |a| dt^2 = 5e-5 m,
 // 2.5 margins (0.02 mm at a skin of 0.1 diameters) and far below half a cell
