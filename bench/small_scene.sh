@@ -75,8 +75,9 @@ else
     for label in base new; do
       b=$build; [[ $label == base ]] && b=$base
       log=$OUT/mixer_${label}_$round.log
+      rm -rf "$work/mixer_$label"  # a restart writes into a fresh directory (no --overwrite with --restart)
       (cd "$mixer_dir" && "$b/src/grainstorm" run "$scene" --backend "$backend" --restart "$checkpoint" --steps "$end" \
-         --out "$work/mixer_$label" --overwrite > "$log" 2>&1)
+         --out "$work/mixer_$label" > "$log" 2>&1)
       us=$(stepping_us "$log" "$mixer_steps")
       if [[ -z $us ]]; then
         say "mixer $label round $round: failed ($log)"; tail -3 "$log" | tee -a "$summary"; continue
@@ -118,9 +119,10 @@ fi
 say "== CUDA API calls per mixer step (nsys, difference of $profile_steps and $((2 * profile_steps)) steps)"
 api_csv() {  # LABEL BUILD STEPS -> the cuda_api_sum CSV's path
   local name=$OUT/nsys_${1}_$3
+  rm -rf "$work/nsys_$1"
   (cd "$mixer_dir" && nsys profile --trace=cuda --sample=none --cpuctxsw=none --force-overwrite=true -o "$name" \
      "$2/src/grainstorm" run "$scene" --backend "$backend" --restart "$checkpoint" --steps $((settle_steps + $3)) \
-     --out "$work/nsys_$1" --overwrite > "$name.log" 2>&1)
+     --out "$work/nsys_$1" > "$name.log" 2>&1)
   # The report's name changed between nsys versions.
   nsys stats --report cuda_api_sum --format csv --force-export=true --output "$name" "$name.nsys-rep" \
     > /dev/null 2>&1 ||
