@@ -10,9 +10,9 @@ const char* fault_cause(int code) {
                                "unstable contact)";
     case kFaultNotFinite: return "position or velocity became NaN or Inf (numerical instability)";
     case kFaultSlotsExhausted: return "more simultaneous contacts than contact_slots (raise contact_slots)";
-    case kFaultListMargin: return "the particle's acceleration changed its move in one step by more than the Verlet "
-                                  "list's margin (|a| dt^2 above 0.09 of the skin: time step too large or unstable "
-                                  "contact)";
+    case kFaultListOutrun: return "the particle moved more than half the Verlet skin from where the list saw it in "
+                                  "a step the list was kept for: its move grew by more than the list's margin (a "
+                                  "tenth of the skin) in one step (time step too large or unstable contact)";
     default: return "unknown fault";
   }
 }

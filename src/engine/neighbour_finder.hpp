@@ -4,6 +4,7 @@
 // the verdicts of the watched kick-drifts on its staleness.
 #include <cstdint>
 #include <stdexcept>
+#include <utility>
 
 #include "backend/host_flags.hpp"
 #include "engine/neighbour_search.hpp"
@@ -41,8 +42,10 @@ class NeighbourFinder final : public NeighbourSearch {
     const Watched& before = watched_[slot(latest_ - 1)];
     if (latest_ > 0 && before.step == latest_ - 1) {
       const ListVerdict v = verdicts_.read(slot(before.step));
-      if (before.builds == builds_) return !before.with_list || v.stale_next != 0;
-      return v.fast != 0;  // built since, on the positions that kick-drift left
+      if (before.builds != builds_) return v.fast != 0;  // built since, on the positions that kick-drift left
+      if (!before.with_list) return true;
+      note_outrun(before.step, v);
+      return v.stale_now != 0 || v.stale_next != 0;
     }
     // None (the first step of this run): this step's own, read at once.
     const Watched& now = watched_[slot(latest_)];
@@ -62,6 +65,16 @@ class NeighbourFinder final : public NeighbourSearch {
   void watch_queued(long long step) {
     verdicts_.queued(slot(step));
     latest_ = step;
+  }
+  // The first step for which a kept list was found stale a step late (or
+  // none), clearing it: reported with the kernels' faults. The last step's
+  // verdict, which no stale() has read yet, is read here (the caller has
+  // waited for the device: a fault check).
+  Fault take_fault() {
+    const Watched& last = watched_[slot(latest_)];
+    if (latest_ >= 0 && last.step == latest_ && last.builds == builds_ && last.with_list)
+      note_outrun(last.step, verdicts_.read(slot(last.step)));
+    return std::exchange(outrun_, Fault{kFaultNone, 0, 0});
   }
   std::size_t bytes() const override { return cells_.bytes() + verlet_.bytes(); }
 
@@ -91,10 +104,16 @@ class NeighbourFinder final : public NeighbourSearch {
     bool with_list = false;
   };
   static int slot(long long step) { return int(step & 1); }
+  // The verdict of `step`, for which the list was kept on the verdict of the
+  // step before: the list must have covered it (the lag's guard).
+  void note_outrun(long long step, const ListVerdict& v) {
+    if (v.stale_now != 0 && outrun_.code == kFaultNone) outrun_ = Fault{kFaultListOutrun, v.stale_now_particle, step};
+  }
   bool watching_ = false;
   HostFlags<ListVerdict> verdicts_;
   Watched watched_[HostFlagRing::kSlots];
   long long latest_ = -1;  // the step of the last watched kick-drift
+  Fault outrun_{kFaultNone, 0, 0};
 };
 
 }  // namespace gs

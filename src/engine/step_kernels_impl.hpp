@@ -49,9 +49,13 @@ class StepKernelsOf final : public StepKernels {
   void mark_by_plane(ParticleStore& s, const MarkingSpec& m) override {
     Exec::parallel_for(s.n_owned, MarkByPlane{s.position.data(), s.marker.data(), m.point, m.normal, m.front, m.back});
   }
+  // The kernels' first fault, or else the neighbour search's (a list kept
+  // too long: found a step late, so no kernel could flag it).
   Fault take_fault() override {
     Fault f = state_.fault.to_host()[0];
     if (f.code != kFaultNone) state_.fault.zero();
+    const Fault outrun = finder_.take_fault();
+    if (outrun.code != kFaultNone && (f.code == kFaultNone || outrun.step < f.step)) return outrun;
     return f;
   }
   void synchronize() const override { Exec::synchronize(); }

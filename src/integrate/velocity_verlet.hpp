@@ -69,11 +69,10 @@ struct HalfKick {
   const std::uint8_t* frozen = nullptr;  // null unless the run has frozen particles
 
   GS_HD bool is_frozen(Index i) const { return frozen && frozen[i] != 0; }
-  GS_HD Vec3d acceleration(Index i) const { return Vec3d(force[i]) * (1.0 / double(mass[i])) + gravity; }
 
   GS_HD void operator()(Index i) const {
     if (is_frozen(i)) return;
-    velocity[i] += acceleration(i) * half_dt;
+    velocity[i] += (Vec3d(force[i]) * (1.0 / double(mass[i])) + gravity) * half_dt;
     if (torque) angular_velocity[i] += Vec3d(torque[i]) * (half_dt / double(inertia[i]));
     if (fp32_state) {
       velocity[i] = on_fp32_grid(velocity[i]);

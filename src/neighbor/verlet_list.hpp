@@ -90,48 +90,51 @@ GS_HD GS_INLINE void sort_by_id(Index* out, Index n, const ParticleId* id) {
   }
 }
 
-// What a watched kick-drift tells the host about the list (ListWatch): ints,
+// What a watched kick-drift tells the host about the list (ListWatch): ints
 // set to 1 by any particle, never cleared by a kernel.
 struct ListVerdict {
-  int stale_next = 0;   // the list may not cover the next step's contacts: rebuild before them
-  int fast = 0;         // a list built on these positions would not cover the next step's either
-  int stale_now = 0;    // a particle is more than half the skin from where the list saw it
+  int stale_next = 0;  // the list may not cover the next step's contacts: rebuild before them
+  int fast = 0;        // a list built on these positions would not cover the next step's either
+  int stale_now = 0;   // a particle is more than half the skin from where the list saw it...
+  ParticleId stale_now_particle = 0;  // ...this one (one of them, where several are)
 };
 
 // The margin delta by which a single rank's list is rebuilt ahead of half the
-// skin, as a fraction of the skin: the verdict of step n is read only at step
-// n + 1, once that step's drift has run (docs/DESIGN.md). delta bounds how
-// much farther a particle may move in step n + 1 than it moved in step n
-// (|a| dt^2, the acceleration of the forces of step n). A tenth of the skin
-// makes a slow bed's list rebuild about an eighth sooner than at half the
-// skin; |a| dt^2 is a tenth of a contact's overlap at the stable step limit
-// (docs/STABILITY.md), so it takes an overlap of about a tenth of a diameter
-// (at a skin of 0.1 diameters) to exceed it: a blow-up, reported as a fault.
+// skin, as a fraction of the skin. The verdict of step n is read only at step
+// n + 1, once that step's drift has run (docs/DESIGN.md, "The step's data
+// flow"); a particle's move in step n + 1 exceeds its move in step n by at
+// most |a| dt^2 (a: its acceleration by the forces of step n), which delta
+// must cover. At the stable step |a| dt^2 is about a tenth of a contact's
+// overlap (docs/STABILITY.md): a tenth of the skin (at the default 0.1
+// diameters) covers overlaps up to about 8 % of a diameter, and makes a slow
+// bed's list rebuild a fifth sooner than at half the skin.
 constexpr double kListMarginOfSkin = 0.1;
 
-// Sets a verdict's flag: many threads may store the same 1 (relaxed atomics
-// on the host, where a plain race would be undefined).
-GS_HD GS_INLINE void raise_flag(int& flag) {
+// Sets a verdict's field: many threads may store at once (relaxed atomics on
+// the host, where a plain race would be undefined; any one store wins).
+template <class T>
+GS_HD GS_INLINE void store_flag(T& field, T value) {
 #if defined(__CUDA_ARCH__)
-  flag = 1;
+  field = value;
 #else
-  __atomic_store_n(&flag, 1, __ATOMIC_RELAXED);
+  __atomic_store_n(&field, value, __ATOMIC_RELAXED);
 #endif
 }
 
-// The check of owned particle i after its drift in step n, against the list
-// built on `reference` (null where the list no longer describes the store:
-// it is rebuilt anyway). With D its distance from where the list saw it (to
-// the nearest image: a wrapped particle has moved by that), m this step's
-// move and delta the margin:
-//   stale_next where D + m + delta > skin / 2. Where the host finds none at
-//     step n + 1, every particle is within skin / 2 then, as long as the
-//     step n + 1 moves it at most m + delta: the guard, checked in step
-//     n + 1's own drift (`jolt` below), makes sure it does;
+// The check of owned particle i (id `id`) after its drift in step n, at x,
+// against the list built on `reference` (null where the list no longer
+// describes the store: it is rebuilt anyway). With D its distance from where
+// the list saw it (to the nearest image: a wrapped particle has moved by
+// that), m this step's move and delta the margin:
+//   stale_next where D + m + delta > skin / 2: where no particle raises it,
+//     every particle is still within skin / 2 after step n + 1, unless its
+//     move grew by more than delta in one step;
 //   fast where m + delta > skin / 2 (a list built after this drift is stale
 //     after the next one, for the same reason);
-//   stale_now where D > skin / 2 (read at once: the first step of a run,
-//     which has no verdict of a step before it).
+//   stale_now where D > skin / 2. Read at once in the first step of a run
+//     (which has no verdict of a step before it); read a step late
+//     otherwise, where it tells the host that a list kept on the last step's
+//     verdict did not cover this step: the guard of the lag (a fault).
 struct ListWatch {
   const Vec3d* reference = nullptr;
   PeriodicBox box;
@@ -139,18 +142,16 @@ struct ListWatch {
   ListVerdict* verdict = nullptr;  // null: not watched (ranks, or no skin)
 
   GS_HD bool active() const { return verdict != nullptr; }
-  // Whether a step whose kick had acceleration `a` may move a particle
-  // farther than this one by more than the margin allows: jolt = |a| dt^2.
-  // Nine tenths of it: the tenth left covers the rounding of positions and
-  // velocities to fp32 (a few 1e-7 of a coordinate per step).
-  GS_HD bool too_sudden(double jolt) const { return jolt > 0.9 * margin; }
-  GS_HD void operator()(Index i, const Vec3d& x, double move) const {
+  GS_HD void operator()(Index i, ParticleId id, const Vec3d& x, double move) const {
     const double ahead = move + margin;
-    if (ahead > half_skin) raise_flag(verdict->fast);
+    if (ahead > half_skin) store_flag(verdict->fast, 1);
     if (!reference) return;
     const double d = norm(box.separation(x, reference[i]));
-    if (d + ahead > half_skin) raise_flag(verdict->stale_next);
-    if (d > half_skin) raise_flag(verdict->stale_now);
+    if (d + ahead > half_skin) store_flag(verdict->stale_next, 1);
+    if (d > half_skin) {
+      store_flag(verdict->stale_now, 1);
+      store_flag(verdict->stale_now_particle, id);
+    }
   }
 };
 

@@ -98,7 +98,7 @@ TEST(VerletList, GoesStaleBeyondHalfTheSkin) {
   auto check = [&](double dy) {
     ListVerdict v;
     const ListWatch watch{b.list.reference.data(), b.list.box, 0.5 * b.list.skin, 0.0, &v};
-    watch(123, c.position[123] + Vec3d(0, dy, 0), 0.0);
+    watch(123, c.id[123], c.position[123] + Vec3d(0, dy, 0), 0.0);
     return v;
   };
   EXPECT_EQ(check(0.49 * skin).stale_now, 0);

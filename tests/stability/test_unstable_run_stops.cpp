@@ -4,7 +4,7 @@
 // Verlet on a contact is unstable above omega dt = 2, i.e. dt > 0.64 t_c, so
 // the overlaps of a bed resting on its contacts grow by a factor each step
 // until a sphere jumps more than half a cell, leaves the domain, turns
-// non-finite or is kicked past the Verlet list's margin. Simulation::run must
+// non-finite or outruns a Verlet list kept for its step. Simulation::run must
 // throw SimulationFault naming the step, the particle and the cause, within
 // fault_check_interval steps of the fault.
 #include <gtest/gtest.h>
@@ -73,7 +73,7 @@ TEST_P(StabilityUnstableRunTest, RunThrowsSimulationFaultNamingStepParticleAndCa
     EXPECT_GE(id, 0);
     EXPECT_LT(id, (long long)scene.particles.size());
     EXPECT_TRUE(cause == fault_cause(kFaultLeftDomain) || cause == fault_cause(kFaultTooFast) ||
-                cause == fault_cause(kFaultNotFinite) || cause == fault_cause(kFaultListMargin))
+                cause == fault_cause(kFaultNotFinite) || cause == fault_cause(kFaultListOutrun))
         << cause;
   }
 }
