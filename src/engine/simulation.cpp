@@ -237,8 +237,8 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
     if (exchange_) exchange_particles();
 
     // A Verlet list is kept while it covers every contact: on one rank, by
-    // the verdict of the last step's kick-drift (no wait for the device; the
-    // kick-drift above checks the margin that makes a step's lag safe);
+    // the verdict of the last step's kick-drift (no wait for the device; a
+    // list kept for a step it did not cover is a fault, found a step later);
     // with ranks it is rebuilt after every rebuild of the halo, whose vote
     // has already measured the moves. Memory is re-sorted only at a rebuild.
     t0 = Clock::now();
