@@ -63,6 +63,13 @@ class DeviceArray {
     if (!h.empty()) backend_copy_from_host(backend_, data_, h.data(), h.size() * sizeof(T));
   }
 
+  // The same, queued behind the kernels already launched (no wait for them):
+  // for small arrays a step changes, such as the walls' poses.
+  void from_host_queued(const std::vector<T>& h) {
+    resize(h.size());
+    if (!h.empty()) backend_copy_from_host_queued(backend_, data_, h.data(), h.size() * sizeof(T));
+  }
+
   // Copies `count` host values into [at, at + count), which must lie within size().
   void from_host(const T* h, std::size_t count, std::size_t at) {
     assert(at + count <= size_);

@@ -98,6 +98,15 @@ void backend_copy_from_host(Backend b, void* dst, const void* host_src, std::siz
 #endif
 }
 
+void backend_copy_from_host_queued(Backend b, void* dst, const void* host_src, std::size_t bytes) {
+  if (b == Backend::cpu) { std::memcpy(dst, host_src, bytes); return; }
+#ifdef GS_HAVE_CUDA
+  GS_CUDA_CHECK(cudaMemcpyAsync(dst, host_src, bytes, cudaMemcpyHostToDevice, 0));
+#else
+  no_cuda();
+#endif
+}
+
 void backend_copy(Backend b, void* dst, const void* src, std::size_t bytes) {
   if (b == Backend::cpu) { std::memmove(dst, src, bytes); return; }
 #ifdef GS_HAVE_CUDA

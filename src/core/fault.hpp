@@ -12,6 +12,7 @@ enum FaultCode : int {
   kFaultTooFast = 2,          // a particle moved more than half a cell in one step
   kFaultNotFinite = 3,        // NaN or Inf in position or velocity
   kFaultSlotsExhausted = 4,   // more simultaneous contacts than contact_slots
+  kFaultListOutrun = 5,       // moved past a Verlet list kept on a verdict read a step late (neighbor/verlet_list.hpp)
 };
 
 struct Fault {

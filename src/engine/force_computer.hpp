@@ -29,11 +29,13 @@ class ForceComputer final : public ForceComputation {
     pairs_.from_host(make_pair_table<Real, Model>(materials, pairs));
   }
 
+  // Every step where walls move: queued behind the last step's kernels, which
+  // read the walls' previous poses, instead of waiting for them.
   void set_walls(const std::vector<Wall>& walls) override {
-    walls_.from_host(walls);
+    walls_.from_host_queued(walls);
     std::vector<WallScreen> screens;
     for (const Wall& w : walls) screens.push_back(wall_screen(w));
-    wall_screens_.from_host(screens);
+    wall_screens_.from_host_queued(screens);
     n_walls_ = int(walls.size());
   }
   void set_meshes(const MeshSet& meshes) override {

@@ -1,20 +1,43 @@
 #pragma once
 // Integration over an execution policy and force precision: the half kicks
-// read the last forces (and torques, where an effect makes them).
+// read the last forces (and torques, where an effect makes them). On one
+// rank the kick-drift also checks the Verlet list (ListWatch, fused into the
+// same pass over the particles: no kernel of its own).
 #include "engine/integration.hpp"
+#include "engine/neighbour_finder.hpp"
 #include "engine/step_state.hpp"
 
 namespace gs {
 
+// The kick-drift of particle i, then the list's check of where it went.
+template <class Real>
+struct KickDriftWatched {
+  KickDrift<Real> drift;
+  ListWatch watch;
+
+  GS_HD void operator()(Index i) const {
+    if (drift.kick.is_frozen(i)) return;
+    drift(i);
+    watch(i, drift.id[i], drift.position[i], norm(drift.kick.velocity[i]) * drift.p.dt);
+  }
+};
+
 template <class Exec, class Real>
 class Integrator final : public Integration {
  public:
-  explicit Integrator(StepState<Real>& state) : st_(state) {}
+  Integrator(StepState<Real>& state, NeighbourFinder<Exec>& neighbours) : st_(state), neighbours_(neighbours) {}
 
   void kick_drift(ParticleStore& s, const IntegrationParams& p) override {
     ImageCount* image = (s.fields_kept & kImageCounts) != 0 ? s.image.data() : nullptr;
-    Exec::parallel_for(s.n_owned, KickDrift<Real>{half_kick(s, p), s.position.data(), s.orientation.data(), image,
-                                                  s.id.data(), p, st_.fault.data()});
+    const KickDrift<Real> drift{half_kick(s, p), s.position.data(), s.orientation.data(), image,
+                                s.id.data(),     p,                  st_.fault.data()};
+    const ListWatch watch = neighbours_.watch(s, p.step);
+    if (!watch.active()) {
+      Exec::parallel_for(s.n_owned, drift);
+      return;
+    }
+    Exec::parallel_for(s.n_owned, KickDriftWatched<Real>{drift, watch});
+    neighbours_.watch_queued(p.step);
   }
   void kick(ParticleStore& s, const IntegrationParams& p) override { Exec::parallel_for(s.n_owned, half_kick(s, p)); }
 
@@ -27,6 +50,7 @@ class Integrator final : public Integration {
   }
 
   StepState<Real>& st_;
+  NeighbourFinder<Exec>& neighbours_;
 };
 
 }  // namespace gs

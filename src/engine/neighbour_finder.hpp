@@ -1,8 +1,12 @@
 #pragma once
 // NeighbourSearch over an execution policy: the cell list, and the Verlet
-// list where the policy keeps one (Exec::verlet_list: both backends).
+// list where the policy keeps one (Exec::verlet_list: both backends), with
+// the verdicts of the watched kick-drifts on its staleness.
+#include <cstdint>
 #include <stdexcept>
+#include <utility>
 
+#include "backend/host_flags.hpp"
 #include "engine/neighbour_search.hpp"
 #include "neighbor/cell_list.hpp"
 #include "neighbor/verlet_list.hpp"
@@ -15,7 +19,7 @@ class NeighbourFinder final : public NeighbourSearch {
   // `scratch`: the step's staging buffer (engine/step_state.hpp), which
   // holds the cell list's sort buffers while it is built.
   explicit NeighbourFinder(DeviceArray<unsigned char>& scratch)
-      : cells_(Exec::backend), verlet_(Exec::backend), scratch_(scratch) {}
+      : cells_(Exec::backend), verlet_(Exec::backend), scratch_(scratch), verdicts_(Exec::backend) {}
 
   void build_cell_list(const ParticleStore& s, const CellGrid& grid) override {
     build_cells<Exec>(cells_, s.position.data(), s.id.data(), s.size(), grid, scratch_);
@@ -29,13 +33,51 @@ class NeighbourFinder final : public NeighbourSearch {
       build_verlet_list<Exec>(verlet_, cells_, s.position.data(), s.radius.data(), s.id.data(), s.n_owned, s.size(),
                               skin);
       built_at_ = s.revision;
+      ++builds_;
     }
   }
-  bool stale(const ParticleStore& s, bool check_moves) const override {
-    if constexpr (Exec::verlet_list)
-      return !list_valid(s) ||
-             (check_moves && verlet_list_stale<Exec>(verlet_, s.position.data(), s.n_owned, s.size()));
+  void watch_moves(bool on) override { watching_ = on; }
+  bool stale(const ParticleStore& s) override {
+    if (!list_valid(s)) return true;
+    if (!watching_) return false;
+    if (!(verlet_.skin > 0)) return true;  // no skin: any move may bring a new contact
+    // The last step's verdict: the kick-drift of a step's kernels ago.
+    const Watched& before = watched_[slot(latest_ - 1)];
+    if (latest_ > 0 && before.step == latest_ - 1) {
+      const ListVerdict v = verdicts_.read(slot(before.step));
+      if (before.builds != builds_) return v.fast != 0;  // built since, on the positions that kick-drift left
+      if (!before.with_list) return true;
+      note_outrun(before.step, v);
+      return v.stale_now != 0 || v.stale_next != 0;
+    }
+    // None (the first step of this run): this step's own, read at once.
+    const Watched& now = watched_[slot(latest_)];
+    if (latest_ >= 0 && now.step == latest_ && now.builds == builds_ && now.with_list)
+      return verdicts_.read(slot(now.step)).stale_now != 0;
     return true;
+  }
+  // The check the kick-drift of `step` makes (inactive where moves are not
+  // watched), its verdict's slot armed; watch_queued once it is launched.
+  ListWatch watch(const ParticleStore& s, long long step) {
+    if (!watching_ || !(verlet_.skin > 0)) return {};
+    const bool with_list = list_valid(s);
+    watched_[slot(step)] = {step, builds_, with_list};
+    return {with_list ? verlet_.reference.data() : nullptr, verlet_.box, 0.5 * verlet_.skin,
+            kListMarginOfSkin * verlet_.skin, verdicts_.arm(slot(step))};
+  }
+  void watch_queued(long long step) {
+    verdicts_.queued(slot(step));
+    latest_ = step;
+  }
+  // The first step for which a kept list was found stale a step late (or
+  // none), clearing it: reported with the kernels' faults. The last step's
+  // verdict, which no stale() has read yet, is read here (the caller has
+  // waited for the device: a fault check).
+  Fault take_fault() {
+    const Watched& last = watched_[slot(latest_)];
+    if (latest_ >= 0 && last.step == latest_ && last.builds == builds_ && last.with_list)
+      note_outrun(last.step, verdicts_.read(slot(last.step)));
+    return std::exchange(outrun_, Fault{kFaultNone, 0, 0});
   }
   std::size_t bytes() const override { return cells_.bytes() + verlet_.bytes(); }  // not scratch_: the mover's
 
@@ -56,6 +98,26 @@ class NeighbourFinder final : public NeighbourSearch {
   VerletList verlet_;  // empty where Exec::verlet_list is false
   DeviceArray<unsigned char>& scratch_;
   std::uint64_t built_at_ = 0;  // the store's revision at the Verlet list's build
+  std::uint64_t builds_ = 0;    // Verlet list builds so far
+
+  // A watched kick-drift: its step, the builds before it, and whether the
+  // list described the store then (else it measured moves only).
+  struct Watched {
+    long long step = -1;
+    std::uint64_t builds = 0;
+    bool with_list = false;
+  };
+  static int slot(long long step) { return int(step & 1); }
+  // The verdict of `step`, for which the list was kept on the verdict of the
+  // step before: the list must have covered it (the lag's guard).
+  void note_outrun(long long step, const ListVerdict& v) {
+    if (v.stale_now != 0 && outrun_.code == kFaultNone) outrun_ = Fault{kFaultListOutrun, v.stale_now_particle, step};
+  }
+  bool watching_ = false;
+  HostFlags<ListVerdict> verdicts_;
+  Watched watched_[HostFlagRing::kSlots];
+  long long latest_ = -1;  // the step of the last watched kick-drift
+  Fault outrun_{kFaultNone, 0, 0};
 };
 
 }  // namespace gs

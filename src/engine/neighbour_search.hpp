@@ -23,13 +23,19 @@ class NeighbourSearch {
   // What the force computation needs to find contacts: the cell list, and
   // with a Verlet list the list too, of particles within r_i + r_j + skin.
   virtual void build(const ParticleStore& s, const CellGrid& grid, double skin) = 0;
-  // Whether build() must run before the next force computation: always
-  // without a Verlet list; with one, when the store has changed since the
-  // build (ParticleStore::revision) or, where `check_moves`, a particle has
-  // moved more than half the skin. Ranks pass false: the halo's vote has
-  // then already rebuilt the halo, and so changed the store, when a
-  // particle moved half of its skin, which is never wider than the list's.
-  virtual bool stale(const ParticleStore& s, bool check_moves) const = 0;
+  // On one rank: the kick-drift measures the moves against the Verlet list
+  // (engine/integrator.hpp) and stale() reads its verdict. Ranks leave it
+  // off: the halo's vote has then already rebuilt the halo, and so changed
+  // the store, when a particle moved half of its skin, which is never wider
+  // than the list's.
+  virtual void watch_moves(bool on) = 0;
+  // Whether build() must run before this step's force computation, called
+  // after this step's kick-drift: always without a Verlet list; with one,
+  // when the store has changed since the build (ParticleStore::revision)
+  // or, where moves are watched, when the verdict of the last step's
+  // kick-drift says so (neighbor/verlet_list.hpp, ListWatch): waiting for
+  // that kernel only, while this step's runs.
+  virtual bool stale(const ParticleStore& s) = 0;
   virtual std::size_t bytes() const = 0;  // cell and Verlet lists
 };
 

@@ -85,6 +85,7 @@ void Simulation::set_up(const SceneSpec& scene) {
                                {scene.materials, scene.pairs, scene.contact_slots});
   const double diameter = 2.0 * largest_radius(scene);
   skin_ = kernels_->neighbours().uses_verlet_list() ? options_.verlet_skin * diameter : 0.0;
+  kernels_->neighbours().watch_moves(!exchange_);
   grid_ = make_cell_grid(scene.domain_min, scene.domain_max, diameter + skin_, periodic_box(scene));
   // The halo's skin, with or without a Verlet list: ghosts then need
   // selecting only when a particle has moved half of it.
@@ -235,12 +236,13 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
     timings_.integrate += phase_seconds(t0);
     if (exchange_) exchange_particles();
 
-    // A Verlet list is kept while it covers every contact; with ranks it is
-    // rebuilt after every rebuild of the halo, whose vote has already
-    // measured the moves (no second pass over the positions). Without a list
-    // the cell list is built every step. Memory is re-sorted only at a rebuild.
+    // A Verlet list is kept while it covers every contact: on one rank, by
+    // the verdict of the last step's kick-drift (no wait for the device; a
+    // list kept for a step it did not cover is a fault, found a step later);
+    // with ranks it is rebuilt after every rebuild of the halo, whose vote
+    // has already measured the moves. Memory is re-sorted only at a rebuild.
     t0 = Clock::now();
-    if (kernels_->neighbours().stale(store_, !exchange_)) {
+    if (kernels_->neighbours().stale(store_)) {
       if (!exchange_) reorder_if_due();
       rebuild_neighbours();
       ++neighbour_builds_;

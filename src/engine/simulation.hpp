@@ -115,7 +115,8 @@ class Simulation {
   void exchange_particles();
   void reorder_if_due();
   double phase_seconds(std::chrono::steady_clock::time_point start) const;
-  static constexpr long long kTimedEvery = 16;  // steps between timed ones
+  // Steps between timed ones: each waits for the device five times.
+  static constexpr long long kTimedEvery = 128;
 
   SceneSpec scene_;
   RunOptions options_;

@@ -35,7 +35,7 @@ class StepKernelsOf final : public StepKernels {
  public:
   StepKernelsOf(const KernelChoice& c, const ContactInputs& in)
       : state_(Exec::backend, history_fields_kept(c.model, c.effects), makes_torques(c.effects), in.contact_slots),
-        finder_(state_.staging), mover_(state_), remover_(mover_), integrator_(state_),
+        finder_(state_.staging), mover_(state_), remover_(mover_), integrator_(state_, finder_),
         forces_(dispatch_forces<Exec, Real>(c, in, state_, finder_)) {}
 
   ParticleMovement& movement() override { return mover_; }
@@ -49,9 +49,13 @@ class StepKernelsOf final : public StepKernels {
   void mark_by_plane(ParticleStore& s, const MarkingSpec& m) override {
     Exec::parallel_for(s.n_owned, MarkByPlane{s.position.data(), s.marker.data(), m.point, m.normal, m.front, m.back});
   }
+  // The kernels' first fault, or else the neighbour search's (a list kept
+  // too long: found a step late, so no kernel could flag it).
   Fault take_fault() override {
     Fault f = state_.fault.to_host()[0];
     if (f.code != kFaultNone) state_.fault.zero();
+    const Fault outrun = finder_.take_fault();
+    if (outrun.code != kFaultNone && (f.code == kFaultNone || outrun.step < f.step)) return outrun;
     return f;
   }
   void synchronize() const override { Exec::synchronize(); }

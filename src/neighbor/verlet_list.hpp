@@ -24,10 +24,12 @@
 // The GPU builds it in two passes over the cells (count; a scan turns the
 // counts into offsets; fill and sort each particle's entries in place:
 // ListCountKernel, ListFillKernel); only the total comes back to the host,
-// to size the list. Its staleness is one flag the device sets and the host
-// reads after the step's kick-drift (CudaExec::any): one wait for the device
-// per step, a few microseconds against the milliseconds of a large bed's step.
-// Ranks skip it: the halo's vote has measured the same moves.
+// to size the list.
+//
+// Its staleness, on one rank, is read one step late, so that the host never
+// waits for the device inside a step (ListWatch below; docs/DESIGN.md, "The
+// step's data flow"). Ranks skip it: the halo's vote has measured the same
+// moves.
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -103,25 +105,83 @@ struct RoundReference {
   GS_HD void operator()(Index i) const { reference[i] = Vec3f(position[i]); }
 };
 
-// Whether owned particle i may have moved more than `limit` since the build
-// (a particle wrapped across a periodic face has moved by its nearest image).
-// Why fp32 references suffice: rounding to nearest moves a coordinate c by at
-// most 2^-24 |c|, so the position at the build lies within
-// 2^-24 (|r.x| + |r.y| + |r.z|) of its reference r; that much (doubled, for
-// the fp64 arithmetic of the test itself) is taken off the limit, so the
-// test can only answer "moved" early, never late. A metre from the origin
-// the margin is 0.36 um, against half a skin of 50 um for 1 mm spheres.
-struct MovedBeyond {
-  const Vec3d* position;
-  const Vec3f* reference;
-  double limit;
+// An upper bound of how far a particle at x is from where the list saw it,
+// given its fp32 reference r (a particle wrapped across a periodic face has
+// moved by its nearest image). Why fp32 references suffice: rounding to
+// nearest moves a coordinate c by at most 2^-24 |c|, so the position at the
+// build lies within 2^-24 (|r.x| + |r.y| + |r.z|) of r; that much (doubled,
+// for the fp64 arithmetic of the test itself) is added to the distance to r,
+// so a move can only be found early, never late. A metre from the origin the
+// addition is 0.36 um, against half a skin of 50 um for 1 mm spheres.
+GS_HD GS_INLINE double distance_from_reference(const Vec3d& x, const Vec3f& r, const PeriodicBox& box) {
+  const double rounding = 0x1p-23 * (std::fabs(double(r.x)) + std::fabs(double(r.y)) + std::fabs(double(r.z))) +
+                          0x1p-126;  // subnormal roundings: below the smallest normal fp32
+  return norm(box.separation(x, Vec3d(r))) + rounding;
+}
+
+// What a watched kick-drift tells the host about the list (ListWatch): ints
+// set to 1 by any particle, never cleared by a kernel.
+struct ListVerdict {
+  int stale_next = 0;  // the list may not cover the next step's contacts: rebuild before them
+  int fast = 0;        // a list built on these positions would not cover the next step's either
+  int stale_now = 0;   // a particle is more than half the skin from where the list saw it...
+  ParticleId stale_now_particle = 0;  // ...this one (one of them, where several are)
+};
+
+// The margin delta by which a single rank's list is rebuilt ahead of half the
+// skin, as a fraction of the skin. The verdict of step n is read only at step
+// n + 1, once that step's drift has run (docs/DESIGN.md, "The step's data
+// flow"); a particle's move in step n + 1 exceeds its move in step n by at
+// most |a| dt^2 (a: its acceleration by the forces of step n), which delta
+// must cover. At the stable step |a| dt^2 is about a tenth of a contact's
+// overlap (docs/STABILITY.md): a tenth of the skin (at the default 0.1
+// diameters) covers overlaps up to about 8 % of a diameter, and makes a slow
+// bed's list rebuild a fifth sooner than at half the skin.
+constexpr double kListMarginOfSkin = 0.1;
+
+// Sets a verdict's field: many threads may store at once (relaxed atomics on
+// the host, where a plain race would be undefined; any one store wins).
+template <class T>
+GS_HD GS_INLINE void store_flag(T& field, T value) {
+#if defined(__CUDA_ARCH__)
+  field = value;
+#else
+  __atomic_store_n(&field, value, __ATOMIC_RELAXED);
+#endif
+}
+
+// The check of owned particle i (id `id`) after its drift in step n, at x,
+// against the list built on `reference` (null where the list no longer
+// describes the store: it is rebuilt anyway). With D its distance from where
+// the list saw it (to the nearest image: a wrapped particle has moved by that;
+// bounded above for the fp32 reference: distance_from_reference), m this
+// step's move and delta the margin:
+//   stale_next where D + m + delta > skin / 2: where no particle raises it,
+//     every particle is still within skin / 2 after step n + 1, unless its
+//     move grew by more than delta in one step;
+//   fast where m + delta > skin / 2 (a list built after this drift is stale
+//     after the next one, for the same reason);
+//   stale_now where D > skin / 2. Read at once in the first step of a run
+//     (which has no verdict of a step before it); read a step late
+//     otherwise, where it tells the host that a list kept on the last step's
+//     verdict did not cover this step: the guard of the lag (a fault).
+struct ListWatch {
+  const Vec3f* reference = nullptr;
   PeriodicBox box;
-  GS_HD bool operator()(Index i) const {
-    const Vec3f r = reference[i];
-    const double rounding = 0x1p-23 * (std::fabs(double(r.x)) + std::fabs(double(r.y)) + std::fabs(double(r.z))) +
-                            0x1p-126;  // subnormal roundings: below the smallest normal fp32
-    const double reach = limit - rounding;
-    return !(reach > 0) || norm2(box.separation(position[i], Vec3d(r))) > reach * reach;
+  double half_skin = 0, margin = 0;
+  ListVerdict* verdict = nullptr;  // null: not watched (ranks, or no skin)
+
+  GS_HD bool active() const { return verdict != nullptr; }
+  GS_HD void operator()(Index i, ParticleId id, const Vec3d& x, double move) const {
+    const double ahead = move + margin;
+    if (ahead > half_skin) store_flag(verdict->fast, 1);
+    if (!reference) return;
+    const double d = distance_from_reference(x, reference[i], box);
+    if (d + ahead > half_skin) store_flag(verdict->stale_next, 1);
+    if (d > half_skin) {
+      store_flag(verdict->stale_now, 1);
+      store_flag(verdict->stale_now_particle, id);
+    }
   }
 };
 
@@ -184,13 +244,6 @@ void build_verlet_list(VerletList& v, const CellList& cells, const Vec3d* positi
   v.n_owned = n_owned;
   v.n_total = n_total;
   v.valid = true;
-}
-
-// Whether the list no longer covers every contact of the store.
-template <class Exec>
-bool verlet_list_stale(const VerletList& v, const Vec3d* position, Index n_owned, Index n_total) {
-  if (!v.valid || v.n_owned != n_owned || v.n_total != n_total) return true;
-  return Exec::any(n_owned, MovedBeyond{position, v.reference.data(), 0.5 * v.skin, v.box});
 }
 
 }  // namespace gs

@@ -312,6 +312,7 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
           "output %.3f, total wall %.3f\n",
           t.integrate, t.neighbours, t.forces, t.exchange, wall - (t.integrate + t.neighbours + t.forces + t.exchange),
           wall);
+  out.log("neighbour lists built %lld times in %lld steps (rank 0)\n", sim.neighbour_builds(), total - first_step);
   if (exchange) {
     const ExchangeSplit x = exchange->split();
     const double sum = x.total() > 0 ? x.total() : 1;

@@ -109,7 +109,7 @@ TEST_P(RouterTest, RefusesMorePeersThanTagBits) {
 // The halo's rebuild test (docs/MULTI_RANK.md, "What moves when"): a
 // particle farther than the limit from where keep_reference saw it, measured
 // to its nearest image on a periodic axis, or a different set of owned
-// particles. Distances against the limit as the Verlet list's MovedBeyond
+// particles. Distances against the limit as the Verlet list's check (ListWatch)
 // computes them, so one rank and many rebuild alike.
 TEST_P(RouterTest, MovedBeyondMeasuresFromTheReferenceByNearestImage) {
   const Backend b = GetParam();

@@ -86,21 +86,26 @@ TEST(VerletList, HoldsExactlyThePairsWithinTheSkinInIdOrder) {
   EXPECT_GT(large_small, 300);
 }
 
+// The list keeps the positions it was built on; the kick-drift's check
+// (ListWatch, read one step late: tests/neighbor/test_list_lag.cpp) measures
+// from them, to the nearest image.
 TEST(VerletList, GoesStaleBeyondHalfTheSkin) {
   const double box = 0.006, skin = 0.0002;
   Cloud c = random_cloud(500, box, 11);
   BuiltList b;
   build(b, c, 500, skin, box);
-  EXPECT_FALSE(verlet_list_stale<CpuExec>(b.list, b.position.data(), 500, 500));
-  std::vector<Vec3d> moved = c.position;
-  moved[123].y += 0.49 * skin;
-  b.position.from_host(moved);
-  EXPECT_FALSE(verlet_list_stale<CpuExec>(b.list, b.position.data(), 500, 500));
-  moved[123].y += 0.02 * skin;
-  b.position.from_host(moved);
-  EXPECT_TRUE(verlet_list_stale<CpuExec>(b.list, b.position.data(), 500, 500));
-  b.position.from_host(c.position);
-  EXPECT_TRUE(verlet_list_stale<CpuExec>(b.list, b.position.data(), 500, 501));  // a ghost more: a new layout
+  const std::vector<Vec3f> reference = b.list.reference.to_host();  // fp32 roundings of the positions
+  ASSERT_EQ(reference.size(), std::size_t(500));
+  for (std::size_t i = 0; i < reference.size(); ++i) ASSERT_EQ(norm2(reference[i] - Vec3f(c.position[i])), 0.0f) << i;
+  auto check = [&](double dy) {
+    ListVerdict v;
+    const ListWatch watch{b.list.reference.data(), b.list.box, 0.5 * b.list.skin, 0.0, &v};
+    watch(123, c.id[123], c.position[123] + Vec3d(0, dy, 0), 0.0);
+    return v;
+  };
+  EXPECT_EQ(check(0.49 * skin).stale_now, 0);
+  EXPECT_EQ(check(0.51 * skin).stale_now, 1);
+  EXPECT_EQ(check(-0.51 * skin).stale_next, 1);
 }
 
 // A gas of polydisperse spheres with random velocities in a box, undamped and

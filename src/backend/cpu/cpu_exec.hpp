@@ -44,15 +44,6 @@ struct CpuExec {
     return m;
   }
 
-  // Whether pred(i) holds for some i in [0, n).
-  template <class P>
-  static bool any(Index n, const P& pred) {
-    bool found = false;
-#pragma omp parallel for reduction(|| : found) schedule(static) if (n >= kSerialBelow)
-    for (Index i = 0; i < n; ++i) found = found || pred(i);
-    return found;
-  }
-
   // Fills v.begin and v.list: the neighbours of particles [0, n_owned) among
   // `cells`, each particle's in ascending id. One pass over the cells.
   static void fill_verlet_list(VerletList& v, const CellCandidates& cells, const WithinSkin& near,

@@ -32,25 +32,6 @@ __global__ void __launch_bounds__(kCudaBlock, MinBlocks) for_each_kernel_bounded
   if (i < n) f(i);
 }
 
-// Sets *flag where pred(i) holds for some i in [0, n) (never clears it).
-template <class P>
-__global__ void any_kernel(Index n, P pred, int* flag) {
-  const Index i = Index(blockIdx.x) * Index(blockDim.x) + Index(threadIdx.x);
-  if (i < n && pred(i)) *flag = 1;
-}
-
-// One int in pinned host memory that kernels write directly: a yes/no
-// answer comes back without a copy, at the cost of the wait for the kernel.
-// One per process (a rank drives one device), allocated at its first use.
-inline int* mapped_flag() {
-  static int* flag = [] {
-    void* p = nullptr;
-    GS_CUDA_CHECK(cudaHostAlloc(&p, sizeof(int), cudaHostAllocMapped));
-    return static_cast<int*>(p);
-  }();
-  return flag;
-}
-
 template <class F, class = void>
 struct MinBlocksPerSM {
   static constexpr int value = 0;
@@ -114,21 +95,6 @@ struct CudaExec {
     Index m = 0;
     GS_CUDA_CHECK(cudaMemcpy(&m, count, sizeof(Index), cudaMemcpyDeviceToHost));
     return m;
-  }
-
-  // Whether pred(i) holds for some i in [0, n): one kernel, then a wait for
-  // it; the answer is read from pinned memory the kernel wrote.
-  template <class P>
-  static bool any(Index n, const P& pred) {
-    if (n <= 0) return false;
-    volatile int* flag = mapped_flag();
-    *flag = 0;
-    int* device_flag = nullptr;
-    GS_CUDA_CHECK(cudaHostGetDevicePointer(reinterpret_cast<void**>(&device_flag), const_cast<int*>(flag), 0));
-    any_kernel<<<unsigned((n + kBlock - 1) / kBlock), kBlock>>>(n, pred, device_flag);
-    GS_CUDA_CHECK(cudaGetLastError());
-    GS_CUDA_CHECK(cudaDeviceSynchronize());
-    return *flag != 0;
   }
 
   // Fills v.begin and v.list: the neighbours of particles [0, n_owned) among
