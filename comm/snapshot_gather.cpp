@@ -52,31 +52,59 @@ void permute(std::vector<T>& v, const std::vector<std::size_t>& order) {
   if (!v.empty()) v = permuted(v, order);
 }
 
-}  // namespace
-
-ParticleSnapshot gather_snapshot(Transport& transport, ParticleSnapshot local) {
-  if (transport.size() == 1) return local;
-  std::vector<Bytes> parts = transport.gather(pack(local));
-  ParticleSnapshot all;
-  all.time = local.time;
-  all.step = local.step;
-  local = ParticleSnapshot();  // rank 0 needs the room for the whole
-  if (transport.rank() != 0) return all;
+// Every rank's packed part into `all` on rank 0, in id order.
+void gather_packed(Transport& transport, Bytes packed, double time, long long step, ParticleSnapshot& all) {
+  std::vector<Bytes> parts = transport.gather(std::move(packed));
+  all.time = time;
+  all.step = step;
+  for_each_field(all, [](auto& v) { v.clear(); });  // the memory stays for the next output
+  if (transport.rank() != 0) return;
   for (Bytes& b : parts) {
     unpack_append(b, all);
     Bytes().swap(b);
   }
   const std::vector<std::size_t> order = id_order(all.id);
   for_each_field(all, [&](auto& v) { permute(v, order); });
+}
+
+}  // namespace
+
+ParticleSnapshot gather_snapshot(Transport& transport, ParticleSnapshot local) {
+  if (transport.size() == 1) return local;
+  Bytes packed = pack(local);
+  const double time = local.time;
+  const long long step = local.step;
+  local = ParticleSnapshot();  // rank 0 needs the room for the whole
+  ParticleSnapshot all;
+  gather_packed(transport, std::move(packed), time, step, all);
   return all;
+}
+
+void gather_snapshot(Transport& transport, const ParticleSnapshot& local, ParticleSnapshot& all) {
+  if (transport.size() == 1) {
+    if (&all != &local) all = local;
+    return;
+  }
+  gather_packed(transport, pack(local), local.time, local.step, all);
 }
 
 HostHistory gather_history(Transport& transport, const std::vector<ParticleId>& local_ids, const HostHistory& local) {
   if (transport.size() == 1) return local;
+  HostHistory all;
+  gather_history(transport, local_ids, local, all);
+  return all;
+}
+
+void gather_history(Transport& transport, const std::vector<ParticleId>& local_ids, const HostHistory& local,
+                    HostHistory& all) {
+  if (transport.size() == 1) {
+    if (&all != &local) all = local;
+    return;
+  }
   ParticleRecords mine;
   mine.id = local_ids;
   mine.history = local;
-  return gather_history_records(transport, mine).history;
+  all = gather_history_records(transport, mine).history;
 }
 
 ParticleRecords gather_history_records(Transport& transport, const ParticleRecords& local) {
