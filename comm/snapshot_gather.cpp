@@ -5,6 +5,7 @@
 
 #include <cstring>
 #include <stdexcept>
+#include <type_traits>
 
 namespace gs {
 namespace {
@@ -21,62 +22,112 @@ void for_each_field(Snapshot& s, F&& f) {
 }
 
 Bytes pack(const ParticleSnapshot& s) {
-  Bytes out;
+  std::size_t size = 0;
+  for_each_field(s, [&](auto& v) { size += sizeof(std::uint64_t) + v.size() * sizeof(v[0]); });
+  Bytes out(size);  // one allocation, not one per field
+  std::size_t at = 0;
   for_each_field(s, [&](auto& v) {
     const std::uint64_t n = v.size();
-    const std::size_t at = out.size(), bytes = n * sizeof(v[0]);
-    out.resize(at + sizeof(n) + bytes);
+    const std::size_t bytes = n * sizeof(v[0]);
     std::memcpy(out.data() + at, &n, sizeof(n));
     if (bytes > 0) std::memcpy(out.data() + at + sizeof(n), v.data(), bytes);
+    at += sizeof(n) + bytes;
   });
   return out;
 }
 
-void unpack_append(const Bytes& in, ParticleSnapshot& into) {
-  std::size_t at = 0;
-  for_each_field(into, [&](auto& v) {
-    std::uint64_t n = 0;
-    if (at + sizeof(n) > in.size()) throw std::runtime_error("snapshot message truncated");
-    std::memcpy(&n, in.data() + at, sizeof(n));
-    at += sizeof(n);
-    const std::size_t old = v.size(), bytes = n * sizeof(v[0]);
-    if (at + bytes > in.size()) throw std::runtime_error("snapshot message truncated");
-    v.resize(old + n);
-    if (bytes > 0) std::memcpy(v.data() + old, in.data() + at, bytes);
-    at += bytes;
-  });
+// Reads the row count of the next field of each part, at the parts' cursors.
+std::vector<std::uint64_t> next_counts(const std::vector<Bytes>& parts, std::vector<std::size_t>& at) {
+  std::vector<std::uint64_t> n(parts.size());
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    if (at[p] + sizeof(std::uint64_t) > parts[p].size()) throw std::runtime_error("snapshot message truncated");
+    std::memcpy(&n[p], parts[p].data() + at[p], sizeof(std::uint64_t));
+    at[p] += sizeof(std::uint64_t);
+  }
+  return n;
 }
 
-template <class T>
-void permute(std::vector<T>& v, const std::vector<std::size_t>& order) {
-  if (!v.empty()) v = permuted(v, order);
+// Every rank's packed part into `all` on rank 0, in id order. The parts'
+// ids give the order; each field's rows then go straight from the messages
+// to their place in `all`'s arrays (kept from the last call): one pass, no
+// concatenated copy to permute.
+void gather_packed(Transport& transport, Bytes packed, double time, long long step, ParticleSnapshot& all) {
+  std::vector<Bytes> parts = transport.gather(std::move(packed));
+  all.time = time;
+  all.step = step;
+  if (transport.rank() != 0) {
+    for_each_field(all, [](auto& v) { v.clear(); });
+    return;
+  }
+  std::vector<std::size_t> at(parts.size(), 0);
+  std::vector<std::size_t> place;  // place[k]: the row in id order of row k of the parts, one after another
+  for_each_field(all, [&](auto& v) {
+    using T = typename std::decay_t<decltype(v)>::value_type;
+    const std::vector<std::uint64_t> n = next_counts(parts, at);
+    std::size_t total = 0;
+    for (std::size_t p = 0; p < parts.size(); ++p) {
+      total += n[p];
+      if (at[p] + n[p] * sizeof(T) > parts[p].size()) throw std::runtime_error("snapshot message truncated");
+    }
+    if (place.empty() && total > 0) {  // the first field: the ids
+      std::vector<ParticleId> ids(total);
+      for (std::size_t p = 0, row = 0; p < parts.size(); row += n[p], ++p)
+        if (n[p] > 0) std::memcpy(ids.data() + row, parts[p].data() + at[p], n[p] * sizeof(ParticleId));
+      const std::vector<std::size_t> order = id_order(ids);
+      place.resize(total);
+      for (std::size_t r = 0; r < total; ++r) place[order[r]] = r;
+    }
+    if (total != 0 && total != place.size()) throw std::runtime_error("snapshot message: a field has another row count");
+    v.resize(total);  // an optional field not kept: empty
+    for (std::size_t p = 0, row = 0; p < parts.size(); row += n[p], ++p) {
+      const char* from = parts[p].data() + at[p];
+      const auto m = static_cast<std::ptrdiff_t>(n[p]);
+#pragma omp parallel for schedule(static) if (m > 100000)
+      for (std::ptrdiff_t j = 0; j < m; ++j)
+        std::memcpy(&v[place[row + std::size_t(j)]], from + std::size_t(j) * sizeof(T), sizeof(T));
+      at[p] += n[p] * sizeof(T);
+    }
+  });
 }
 
 }  // namespace
 
 ParticleSnapshot gather_snapshot(Transport& transport, ParticleSnapshot local) {
   if (transport.size() == 1) return local;
-  std::vector<Bytes> parts = transport.gather(pack(local));
-  ParticleSnapshot all;
-  all.time = local.time;
-  all.step = local.step;
+  Bytes packed = pack(local);
+  const double time = local.time;
+  const long long step = local.step;
   local = ParticleSnapshot();  // rank 0 needs the room for the whole
-  if (transport.rank() != 0) return all;
-  for (Bytes& b : parts) {
-    unpack_append(b, all);
-    Bytes().swap(b);
-  }
-  const std::vector<std::size_t> order = id_order(all.id);
-  for_each_field(all, [&](auto& v) { permute(v, order); });
+  ParticleSnapshot all;
+  gather_packed(transport, std::move(packed), time, step, all);
   return all;
+}
+
+void gather_snapshot(Transport& transport, const ParticleSnapshot& local, ParticleSnapshot& all) {
+  if (transport.size() == 1) {
+    if (&all != &local) all = local;
+    return;
+  }
+  gather_packed(transport, pack(local), local.time, local.step, all);
 }
 
 HostHistory gather_history(Transport& transport, const std::vector<ParticleId>& local_ids, const HostHistory& local) {
   if (transport.size() == 1) return local;
+  HostHistory all;
+  gather_history(transport, local_ids, local, all);
+  return all;
+}
+
+void gather_history(Transport& transport, const std::vector<ParticleId>& local_ids, const HostHistory& local,
+                    HostHistory& all) {
+  if (transport.size() == 1) {
+    if (&all != &local) all = local;
+    return;
+  }
   ParticleRecords mine;
   mine.id = local_ids;
   mine.history = local;
-  return gather_history_records(transport, mine).history;
+  all = gather_history_records(transport, mine).history;
 }
 
 ParticleRecords gather_history_records(Transport& transport, const ParticleRecords& local) {

@@ -7,7 +7,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "backend/host_pins.hpp"
 #include "core/particle_records.hpp"
+#include "core/particle_snapshot.hpp"
 #include "engine/particle_message.hpp"
 #include "engine/particle_store.hpp"
 
@@ -54,10 +56,23 @@ class ParticleMovement {
   // Host copies, owned particles in store order.
   virtual std::vector<Vec3d> forces(const ParticleStore& s) const = 0;
   virtual std::vector<Vec3d> torques(const ParticleStore& s) const = 0;
-  virtual HostHistory history(const ParticleStore& s) const = 0;
-  // Contacts of each owned particle (occupied history slots, store order);
-  // all zero without history. Output needs these, not the whole history.
-  virtual std::vector<std::uint16_t> contact_counts(const ParticleStore& s) const = 0;
+  HostHistory history(const ParticleStore& s) const {
+    HostHistory h;
+    HostPins unpinned(false);
+    history_to_host(s, nullptr, h, unpinned);
+    return h;
+  }
+  // The owned particles to the host, row r from store index order[r] (a
+  // backend array of n_owned indices; null: store order): every kept
+  // particle field, the forces and torques in fp64 (zero torques where no
+  // effect makes them) and, in runs with contact history, each particle's
+  // contacts (occupied slots; output needs these, not the whole history).
+  // Each field is put in order on the backend and copied once; `into`'s
+  // arrays keep their memory from call to call, `pins` page-locks them.
+  virtual void owned_to_host(const ParticleStore& s, const Index* order, ParticleSnapshot& into,
+                             HostPins& pins) const = 0;
+  // The same for the contact history (empty rows without history).
+  virtual void history_to_host(const ParticleStore& s, const Index* order, HostHistory& into, HostPins& pins) const = 0;
   // Ids and history rows (store order) of the owned particles with a stored
   // contact on an analytic wall: what the wall loads need of the history.
   virtual ParticleRecords wall_contact_history(const ParticleStore& s) const = 0;

@@ -20,19 +20,6 @@ struct Gather {
   GS_HD void operator()(Index k) const { to[k] = from[order[k]]; }
 };
 
-// Occupied history slots of particle i.
-struct CountContacts {
-  const ParticleId* partner;
-  HistoryStrides strides;
-  int slots;
-  std::uint16_t* count;
-  GS_HD void operator()(Index i) const {
-    unsigned c = 0;
-    for (int k = 0; k < slots; ++k) c += partner[strides.at(k, std::size_t(i))] != kNoPartner;
-    count[i] = std::uint16_t(c);
-  }
-};
-
 // Whether particle i has a stored contact on an analytic wall.
 struct TouchesWall {
   const ParticleId* partner;
@@ -84,8 +71,8 @@ class ParticleMover final : public ParticleMovement {
     if (!st_.torque) return std::vector<Vec3d>(s.n_owned);
     return widened(st_.forces.torque, s.n_owned);
   }
-  HostHistory history(const ParticleStore& s) const override;
-  std::vector<std::uint16_t> contact_counts(const ParticleStore& s) const override;
+  void owned_to_host(const ParticleStore& s, const Index* order, ParticleSnapshot& into, HostPins& pins) const override;
+  void history_to_host(const ParticleStore& s, const Index* order, HostHistory& into, HostPins& pins) const override;
   ParticleRecords wall_contact_history(const ParticleStore& s) const override;
 
   void synchronize() const override { Exec::synchronize(); }
@@ -121,3 +108,4 @@ class ParticleMover final : public ParticleMovement {
 #include "engine/particle_mover_history.hpp"
 #include "engine/particle_mover_transfer.hpp"
 #include "engine/particle_mover_forward.hpp"
+#include "engine/particle_mover_output.hpp"

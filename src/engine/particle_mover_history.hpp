@@ -1,6 +1,6 @@
 #pragma once
 // Out-of-line members of ParticleMover: re-sorting the store, laying the
-// history out, and the history's host copies.
+// history out, and the history from the host.
 #include <stdexcept>
 #include <type_traits>
 
@@ -107,37 +107,6 @@ void ParticleMover<Exec, Real>::grow_history(std::size_t capacity) {
   });
   h.capacity = capacity;
   h.strides = fresh;
-}
-
-template <class Exec, class Real>
-HostHistory ParticleMover<Exec, Real>::history(const ParticleStore& s) const {
-  HostHistory h;
-  h.slots = st_.history.slots;
-  if (!st_.keeps_history()) return h;
-  const Index n = s.n_owned;
-  const HistoryStrides at = st_.history.strides;
-  const std::size_t slots = std::size_t(h.slots);
-  // Rows i * slots + k from the layout of `at`, widened to fp64. Only the
-  // fields the run keeps: a checkpoint of a frictional bed without rolling
-  // resistance carries no rolling zeros.
-  auto rows = [&](const auto& field, auto& out) {
-    const auto device = field.to_host();
-    out.resize(device.empty() ? 0 : n * slots);
-    for (Index i = 0; i < n && !device.empty(); ++i)
-      for (std::size_t k = 0; k < slots; ++k)
-        out[i * slots + k] = typename std::decay_t<decltype(out)>::value_type(device[at.at(int(k), std::size_t(i))]);
-  };
-  rows(st_.history.partner, h.partner);
-  for_each_history_field(st_.history, h, [&](const char*, unsigned, const auto& field, auto& out) { rows(field, out); });
-  return h;
-}
-
-template <class Exec, class Real>
-std::vector<std::uint16_t> ParticleMover<Exec, Real>::contact_counts(const ParticleStore& s) const {
-  if (!st_.keeps_history()) return std::vector<std::uint16_t>(std::size_t(s.n_owned), 0);
-  DeviceArray<std::uint16_t> count(Exec::backend, std::size_t(s.n_owned));
-  Exec::parallel_for(s.n_owned, CountContacts{st_.history.partner.data(), st_.history.strides, st_.history.slots, count.data()});
-  return count.to_host();
 }
 
 template <class Exec, class Real>

@@ -28,9 +28,18 @@ SceneSpec without_particles(const SceneSpec& scene) {
 
 // The first n ids of the store (its owned particles), in ascending id order.
 std::vector<std::size_t> owned_id_order(const DeviceArray<ParticleId>& ids, std::size_t n) {
-  std::vector<ParticleId> id = ids.to_host();
-  id.resize(n);
+  std::vector<ParticleId> id(n);
+  if (n > 0) backend_copy_to_host(ids.backend(), id.data(), ids.data(), n * sizeof(ParticleId));
   return id_order(id);
+}
+
+// The same as store indices on the backend, for kernels that put fields in id order.
+DeviceArray<Index> owned_id_order_on_backend(const DeviceArray<ParticleId>& ids, std::size_t n) {
+  const std::vector<std::size_t> order = owned_id_order(ids, n);
+  std::vector<Index> index(order.begin(), order.end());
+  DeviceArray<Index> out(ids.backend());
+  out.from_host(index);
+  return out;
 }
 
 }  // namespace
@@ -327,20 +336,18 @@ void Simulation::check_fault() {
 }
 
 ParticleSnapshot Simulation::snapshot() const {
-  kernels_->synchronize();
-  const std::size_t n = std::size_t(store_.n_owned);
-  const std::vector<std::size_t> order = owned_id_order(store_.id, n);
-  auto owned = [n](auto v) { v.resize(n); return v; };
   ParticleSnapshot s;
+  HostPins unpinned(false);
+  snapshot_into(s, unpinned);
+  return s;
+}
+
+void Simulation::snapshot_into(ParticleSnapshot& s, HostPins& pins) const {
+  kernels_->synchronize();
+  const DeviceArray<Index> order = owned_id_order_on_backend(store_.id, std::size_t(store_.n_owned));
   s.time = time_;
   s.step = step_;
-  for_each_kept_particle_field(s, store_, store_.fields_kept, [&](const char*, auto& to, const auto& from) {
-    to = permuted(owned(from.to_host()), order);
-  });
-  s.force = permuted(kernels_->movement().forces(store_), order);
-  s.torque = permuted(kernels_->movement().torques(store_), order);
-  if (keeps_history(scene_.model, scene_.effects)) s.contacts = permuted(kernels_->movement().contact_counts(store_), order);
-  return s;
+  kernels_->movement().owned_to_host(store_, order.data(), s, pins);
 }
 
 void Simulation::measure_contacts_at(long long step) {
@@ -375,9 +382,16 @@ ParticleRecords Simulation::wall_contact_history() const {
 }
 
 HostHistory Simulation::history() const {
-  HostHistory h = kernels_->movement().history(store_);
-  if (h.partner.empty()) return h;
-  return rows_permuted(h, owned_id_order(store_.id, std::size_t(store_.n_owned)));
+  HostHistory h;
+  HostPins unpinned(false);
+  history_into(h, unpinned);
+  return h;
+}
+
+void Simulation::history_into(HostHistory& h, HostPins& pins) const {
+  kernels_->synchronize();
+  const DeviceArray<Index> order = owned_id_order_on_backend(store_.id, std::size_t(store_.n_owned));
+  kernels_->movement().history_to_host(store_, order.data(), h, pins);
 }
 
 std::size_t Simulation::device_bytes() const {

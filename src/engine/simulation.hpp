@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "backend/host_pins.hpp"
 #include "core/insertion_state.hpp"
 #include "core/particle_snapshot.hpp"
 #include "engine/rank_exchange.hpp"
@@ -74,6 +75,9 @@ class Simulation {
   std::vector<MeshLoad> mesh_loads() const;
 
   ParticleSnapshot snapshot() const;  // this rank's owned particles
+  // The same into `s`, whose arrays keep their memory from call to call
+  // (output reuses one set), page-locked by `pins` on a GPU.
+  void snapshot_into(ParticleSnapshot& s, HostPins& pins) const;
   // The measurements' contact pass (engine/contact_measure_kernel.hpp) at
   // `step`: after that step's force computation, or now when the simulation
   // is at it. Its result, per owned particle in snapshot (id) order
@@ -82,6 +86,7 @@ class Simulation {
   std::vector<ContactMeasure> contact_measures() const;
   double contact_pass_seconds() const { return contact_pass_seconds_; }  // wall time of every pass so far
   HostHistory history() const;  // in snapshot (id) order
+  void history_into(HostHistory& h, HostPins& pins) const;  // as snapshot_into
   // Ids (ascending) and history of the particles with a stored wall contact.
   ParticleRecords wall_contact_history() const;
   std::size_t device_bytes() const;

@@ -1,8 +1,8 @@
 #pragma once
 // Output files written on a thread of their own while the run steps on. One
-// job at a time, in the order given: a job owns the host copy it writes, and
-// the next job starts only once the previous one is done (so at most one
-// copy waits on the disk while the run builds the next).
+// job at a time, in the order given: the next job starts only once the
+// previous one is done. A job reads host arrays its owner keeps and reuses
+// (run/run_output.hpp): the owner refills them only after wait().
 #include <functional>
 #include <string>
 #include <thread>

@@ -8,16 +8,23 @@ Checkpoint make_checkpoint(ParticleSnapshot all, HostHistory history, const std:
                            std::uint64_t scene_hash, int rank_count,
                            const std::optional<InsertionState>& insertion) {
   Checkpoint c;
-  c.step = all.step;
-  c.time = all.time;
   c.particles = std::move(all);  // moved: a checkpoint's particles are its largest part
   c.history = std::move(history);
+  complete_checkpoint(c, walls, scene_hash, rank_count, insertion);
+  return c;
+}
+
+void complete_checkpoint(Checkpoint& c, const std::vector<Wall>& walls, std::uint64_t scene_hash, int rank_count,
+                         const std::optional<InsertionState>& insertion) {
+  c.step = c.particles.step;
+  c.time = c.particles.time;
   c.walls = walls;
   c.scene_hash = scene_hash;
   c.rank_count = rank_count;
   c.decomposition_axis = -1;  // the partition is recomputed on restart, for any rank count
+  c.decomposition_cuts.clear();
+  c.random_state = 0;
   c.insertion = insertion;
-  return c;
 }
 
 RestartState restart_state(const Checkpoint& c) {

@@ -123,18 +123,38 @@ void RunOutput::in_background(std::function<void()> job) {
 }
 
 void RunOutput::snapshot(const Simulation& sim) {
-  finish();  // the previous files are complete before the next host copy is made
+  finish();  // the previous files are complete before the host copy is refilled
   std::vector<double> mesh_load;  // per mesh: fx fy fz tx ty tz, summed over ranks (collective)
   for (const MeshLoad& l : sim.mesh_loads())
     mesh_load.insert(mesh_load.end(), {l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y, l.torque.z});
   if (!mesh_load.empty()) transport_.sum(mesh_load);  // every rank has the same meshes
-  auto s = std::make_shared<const ParticleSnapshot>(gather_snapshot(transport_, sim.snapshot()));
+  stage(sim, false);
+  const ParticleSnapshot& s = staged_.particles;
   const bool need_history = keeps_history(scene_.model, scene_.effects);
   const ParticleRecords on_walls =
       need_history ? gather_history_records(transport_, sim.wall_contact_history()) : ParticleRecords();
-  written_by_rank_0([&] { write_timeseries_row(sim, *s, on_walls, mesh_load); });
-  // The files themselves while the run steps on; the job owns its copies.
-  in_background([this, s, walls = sim.walls(), meshes = sim.meshes()] { write_snapshot_files(*s, walls, meshes); });
+  written_by_rank_0([&] { write_timeseries_row(sim, s, on_walls, mesh_load); });
+  // The files themselves while the run steps on; the job reads staged_,
+  // which the next snapshot or checkpoint refills only after finish().
+  in_background([this, walls = sim.walls(), meshes = sim.meshes()] {
+    write_snapshot_files(staged_.particles, walls, meshes);
+  });
+}
+
+// This rank's owned particles (and their contact history) to the host, and
+// every rank's in staged_ on rank 0. One rank fills staged_ directly; more
+// fill their local_ arrays first. Either way into arrays kept from the last
+// output: no fresh memory to fault in, and on a GPU pinned once.
+void RunOutput::stage(const Simulation& sim, bool with_history) {
+  const bool one_rank = transport_.size() == 1;
+  ParticleSnapshot& mine = one_rank ? staged_.particles : local_;
+  sim.snapshot_into(mine, pins_);
+  if (with_history) {
+    HostHistory& history = one_rank ? staged_.history : local_history_;
+    sim.history_into(history, pins_);
+    gather_history(transport_, mine.id, history, staged_.history);
+  }
+  gather_snapshot(transport_, mine, staged_.particles);
 }
 
 // On the writer's thread: the snapshot's files, then the indexes that name
@@ -245,19 +265,17 @@ void RunOutput::index_earlier_snapshots(long long step) {
 }
 
 void RunOutput::checkpoint(const Simulation& sim) {
-  finish();  // the previous files are complete before the next host copy is made
-  ParticleSnapshot local = sim.snapshot();
-  HostHistory h = gather_history(transport_, local.id, sim.history());
-  ParticleSnapshot s = gather_snapshot(transport_, std::move(local));
+  finish();  // the previous files are complete before the host copy is refilled
+  stage(sim, true);
   if (transport_.rank() != 0) return;
   const std::optional<InsertionState> insertion =
       scene_.inlets.empty() ? std::nullopt : std::optional<InsertionState>(sim.insertion());
-  auto c = std::make_shared<const Checkpoint>(
-      make_checkpoint(std::move(s), std::move(h), sim.walls(), scene_hash_, transport_.size(), insertion));
-  in_background([this, c] {
-    const std::string path = directory_ + "/" + checkpoint_h5_name(c->step);
+  complete_checkpoint(staged_, sim.walls(), scene_hash_, transport_.size(), insertion);
+  in_background([this] {
+    const Checkpoint& c = staged_;  // refilled only after finish()
+    const std::string path = directory_ + "/" + checkpoint_h5_name(c.step);
     const auto start = Clock::now();
-    write_checkpoint(path, *c);  // under a temporary name, renamed when complete
+    write_checkpoint(path, c);  // under a temporary name, renamed when complete
     const double seconds = seconds_since(start);
     checkpoints_.push_back(path);
     while (checkpoints_.size() > 2) {

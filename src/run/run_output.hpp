@@ -5,7 +5,9 @@
 // stops every rank with the same RankFailure (comm/rank_agreement.hpp).
 // Snapshot and checkpoint files are written on a thread of their own
 // (io/background_writer.hpp) while the run steps on: the next snapshot,
-// checkpoint or finish() waits for them and reports their failure.
+// checkpoint or finish() waits for them and reports their failure. Their host
+// copies are one set of arrays kept from output to output (pinned on a GPU);
+// the writer reads them, and they are refilled only after that wait.
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -17,6 +19,7 @@
 #include "analysis/mixing_log.hpp"
 #include "comm/transport.hpp"
 #include "engine/simulation.hpp"
+#include "io/checkpoint.hpp"
 #include "io/h5_meshes.hpp"
 #include "io/snapshot_fields.hpp"
 #include "io/xdmf_series.hpp"
@@ -62,6 +65,7 @@ class RunOutput {
   void write_timeseries_row(const Simulation& sim, const ParticleSnapshot& s, const ParticleRecords& on_walls,
                             const std::vector<double>& mesh_load);
   void write_snapshot_files(const ParticleSnapshot& s, const std::vector<Wall>& walls, const MeshSet& meshes);
+  void stage(const Simulation& sim, bool with_history);  // the host copy in staged_ (rank 0)
 
   const SceneSpec& scene_;
   std::string directory_;
@@ -76,6 +80,12 @@ class RunOutput {
   std::unique_ptr<MixingLog> mixing_log_;
   std::unique_ptr<RemovalLog> removal_log_;
   std::mutex log_mutex_;
+  // The host copy of the last snapshot or checkpoint: every particle on rank
+  // 0, read by the writer's job; with several ranks each rank's own first.
+  Checkpoint staged_;
+  ParticleSnapshot local_;
+  HostHistory local_history_;
+  HostPins pins_;  // after the arrays it pins: unpins them before they go
   // Last: destroyed first, so its job ends while the members it uses live.
   BackgroundWriter writer_;
 };

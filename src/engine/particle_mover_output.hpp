@@ -1,0 +1,152 @@
+#pragma once
+// Out-of-line members of ParticleMover that copy the owned particles to the
+// host for output and checkpoints: each field put in the order asked for
+// (id order) by a backend kernel and copied once, owned particles only, into
+// host arrays that the caller reuses from one output to the next.
+#include <algorithm>
+#include <type_traits>
+
+namespace gs {
+
+// Row k of `to` from store index order[first + k] (order null: first + k),
+// in the host's type U (fp32 forces widen to fp64 exactly).
+template <class T, class U>
+struct GatherRowsAs {
+  const T* from;
+  U* to;
+  const Index* order;
+  Index first;
+  GS_HD void operator()(Index k) const {
+    const Index r = first + k;
+    to[k] = U(from[order ? order[r] : r]);
+  }
+};
+
+// History row k (its `slots` entries, in slot order) of particle
+// order[first + k], from the layout `at`, in the host's type U.
+template <class T, class U>
+struct GatherHistoryRowsAs {
+  const T* from;
+  U* to;
+  const Index* order;
+  Index first;
+  HistoryStrides at;
+  int slots;
+  GS_HD void operator()(Index k) const {
+    const Index r = first + k;
+    const std::size_t p = std::size_t(order ? order[r] : r);
+    for (int s = 0; s < slots; ++s) to[std::size_t(k) * std::size_t(slots) + std::size_t(s)] = U(from[at.at(s, p)]);
+  }
+};
+
+// Occupied history slots of particle order[first + k], at row k.
+struct CountContactsOf {
+  const ParticleId* partner;
+  HistoryStrides strides;
+  int slots;
+  const Index* order;
+  Index first;
+  std::uint16_t* count;
+  GS_HD void operator()(Index k) const {
+    const Index r = first + k;
+    const std::size_t p = std::size_t(order ? order[r] : r);
+    unsigned c = 0;
+    for (int s = 0; s < slots; ++s) c += partner[strides.at(s, p)] != kNoPartner;
+    count[k] = std::uint16_t(c);
+  }
+};
+
+// Host array `out` of n rows of `width` values, written by rows(first, m,
+// to): a kernel that writes rows [first, first + m) at `to`. On the CPU the
+// kernel writes `out` itself; on a GPU it writes the staging array a chunk of
+// rows at a time, each chunk copied once to its place in `out`.
+template <class Exec, class U, class Rows>
+void rows_to_host(std::vector<U>& out, Index n, std::size_t width, HostPins& pins, DeviceArray<unsigned char>& staging,
+                  const Rows& rows) {
+  pins.resize(Exec::backend, out, std::size_t(n) * width);
+  if (n == 0 || width == 0) return;
+  if constexpr (Exec::backend == Backend::cpu) {
+    rows(0, n, out.data());
+  } else {
+    // The staging array as large as it already is (a reorder sizes it for
+    // the widest field), at least 64 MiB: a few chunks, no new device memory.
+    const std::size_t row_bytes = width * sizeof(U);
+    const std::size_t budget = std::max(staging.bytes(), std::size_t(64) << 20);
+    const Index chunk = Index(std::max<std::size_t>(1, std::min<std::size_t>(std::size_t(n), budget / row_bytes)));
+    staging.resize(std::size_t(chunk) * row_bytes);
+    U* to = reinterpret_cast<U*>(staging.data());
+    for (Index first = 0; first < n; first += chunk) {
+      const Index m = std::min(chunk, n - first);
+      rows(first, m, to);
+      backend_copy_to_host(Exec::backend, out.data() + std::size_t(first) * width, to, std::size_t(m) * row_bytes);
+    }
+  }
+}
+
+// Field `a`'s first n values, row r from store index order[r], as U.
+template <class Exec, class T, class U>
+void field_to_host(const DeviceArray<T>& a, const Index* order, Index n, std::vector<U>& out, HostPins& pins,
+                   DeviceArray<unsigned char>& staging) {
+  rows_to_host<Exec>(out, n, 1, pins, staging, [&](Index first, Index m, U* to) {
+    Exec::parallel_for(m, GatherRowsAs<T, U>{a.data(), to, order, first});
+  });
+}
+
+template <class Exec, class Real>
+void ParticleMover<Exec, Real>::owned_to_host(const ParticleStore& s, const Index* order, ParticleSnapshot& into,
+                                              HostPins& pins) const {
+  const Index n = s.n_owned;
+  DeviceArray<unsigned char>& staging = st_.staging;
+  for_each_particle_field_bit(into, [&](const char*, unsigned bit, auto& field) {
+    if (bit != kEveryRun && (s.fields_kept & bit) == 0) field.clear();  // not kept: empty
+  });
+  for_each_kept_particle_field(s, into, s.fields_kept, [&](const char*, const auto& a, auto& out) {
+    field_to_host<Exec>(a, order, n, out, pins, staging);
+  });
+  field_to_host<Exec>(st_.forces.force, order, n, into.force, pins, staging);
+  if (st_.torque) {
+    field_to_host<Exec>(st_.forces.torque, order, n, into.torque, pins, staging);
+  } else {
+    pins.resize(Exec::backend, into.torque, std::size_t(n));
+    std::fill(into.torque.begin(), into.torque.end(), Vec3d{});  // no effect makes torques
+  }
+  if (!st_.keeps_history()) {
+    into.contacts.clear();
+    return;
+  }
+  const ContactHistory<Real>& h = st_.history;
+  rows_to_host<Exec>(into.contacts, n, 1, pins, staging, [&](Index first, Index m, std::uint16_t* to) {
+    Exec::parallel_for(m, CountContactsOf{h.partner.data(), h.strides, h.slots, order, first, to});
+  });
+}
+
+template <class Exec, class Real>
+void ParticleMover<Exec, Real>::history_to_host(const ParticleStore& s, const Index* order, HostHistory& into,
+                                                HostPins& pins) const {
+  into.slots = st_.history.slots;
+  if (!st_.keeps_history()) {
+    into.partner.clear();
+    for_each_history_field(into, [](const char*, unsigned, auto& rows) { rows.clear(); });
+    return;
+  }
+  const Index n = s.n_owned;
+  const ContactHistory<Real>& h = st_.history;
+  // Rows i * slots + k, widened to fp64. Only the fields the run keeps: a
+  // checkpoint of a frictional bed without rolling resistance carries no
+  // rolling zeros.
+  auto rows = [&](const auto& field, auto& out) {
+    using T = typename std::decay_t<decltype(field)>::value_type;
+    using U = typename std::decay_t<decltype(out)>::value_type;
+    if (field.size() == 0) {
+      out.clear();
+      return;
+    }
+    rows_to_host<Exec>(out, n, std::size_t(h.slots), pins, st_.staging, [&](Index first, Index m, U* to) {
+      Exec::parallel_for(m, GatherHistoryRowsAs<T, U>{field.data(), to, order, first, h.strides, h.slots});
+    });
+  };
+  rows(h.partner, into.partner);
+  for_each_history_field(h, into, [&](const char*, unsigned, const auto& field, auto& out) { rows(field, out); });
+}
+
+}  // namespace gs

@@ -1,0 +1,114 @@
+// A run's snapshots and checkpoints are written from one set of host arrays
+// that the next output refills (run/run_output.hpp): a refill must wait until
+// the writer's thread has finished the file it reads. Back-to-back outputs of
+// two simulations with different particles, each file against the
+// particles it must hold, computed here from the scene (free flight).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <memory>
+#include <numeric>
+#include <random>
+
+#include "comm/transport.hpp"
+#include "io/checkpoint.hpp"
+#include "io/h5_snapshot.hpp"
+#include "io/io_test_helpers.hpp"
+#include "run/run_output.hpp"
+#include "support/support.hpp"
+
+namespace gs {
+namespace {
+
+constexpr double kStep = 1e-4;
+
+// 1000 spheres on a lattice, apart (no contacts), each with a velocity of
+// its own, ids shuffled so that the store's order is not the id order.
+SceneSpec free_flight_scene(const std::string& directory) {
+  SceneSpec s = test::base_scene(2500, 1e4, 0.5, 0.5);
+  s.effects = kFriction;  // a checkpoint with contact history rows (all free here)
+  s.gravity = Vec3d();
+  std::vector<ParticleId> ids(1000);
+  std::iota(ids.begin(), ids.end(), ParticleId(0));
+  std::shuffle(ids.begin(), ids.end(), std::mt19937(7));
+  for (int k = 0; k < 1000; ++k) {
+    const Vec3d at(-0.015 + 0.003 * (k % 10), -0.015 + 0.003 * (k / 10 % 10), -0.015 + 0.003 * (k / 100));
+    const Vec3d v(0.01 * (k % 7 + 1), -0.02 * (k % 5), 0.005 * (k % 3 - 1));
+    s.particles.push_back(test::particle(ids[std::size_t(k)], 0.001, at, v));
+  }
+  s.time_step = kStep;
+  s.output.directory = directory;
+  return s;
+}
+
+// Position of each particle, in id order, after `steps` steps of free flight.
+std::vector<Vec3d> expected_positions(const SceneSpec& s, int steps) {
+  std::vector<Vec3d> x(s.particles.size());
+  for (const ParticleInit& p : s.particles) {
+    Vec3d at = p.position;
+    for (int k = 0; k < steps; ++k) at = at + p.velocity * kStep;
+    x[p.id] = at;
+  }
+  return x;
+}
+
+void expect_positions(const std::vector<double>& flat, const std::vector<Vec3d>& expected, const std::string& what) {
+  ASSERT_EQ(flat.size(), 3 * expected.size()) << what;
+  int wrong = 0;
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    const Vec3d got(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
+    wrong += norm(got - expected[i]) > 1e-12;
+  }
+  EXPECT_EQ(wrong, 0) << what << ": rows not at their particle's position";
+}
+
+class RunOutputTest : public testing::TestWithParam<Backend> {};
+
+TEST_P(RunOutputTest, BackToBackOutputsEachWriteTheirOwnParticles) {
+  const std::string dir = testing::TempDir() + "/run_output_" + backend_name(GetParam());
+  std::filesystem::remove_all(dir);
+  const SceneSpec scene = free_flight_scene(dir);
+  RunOptions o;
+  o.backend = GetParam();
+  constexpr int kStates = 5;  // the same particles after 0, 1, ... 4 steps
+  std::vector<std::unique_ptr<Simulation>> at;
+  for (int k = 0; k < kStates; ++k) {
+    at.push_back(std::make_unique<Simulation>(scene, o));
+    at.back()->run(k);
+  }
+  const std::unique_ptr<Transport> transport = make_single_transport();
+  {
+    RunOutput out(scene, dir, *transport, 0);
+    // Each call refills the host arrays the previous file is still being
+    // written from, unless it waits for that file first.
+    for (int k = 0; k < kStates; ++k) out.snapshot(*at[std::size_t(k)]);
+    out.checkpoint(*at[1]);
+    out.checkpoint(*at[2]);
+    out.finish();
+  }
+  std::vector<ParticleId> ids(scene.particles.size());
+  std::iota(ids.begin(), ids.end(), ParticleId(0));
+  for (int k = 0; k < kStates; ++k) {
+    const std::string file = dir + "/" + snapshot_h5_name(k);
+    expect_positions(test::read_h5<double>(file, "particles/position", H5T_NATIVE_DOUBLE), expected_positions(scene, k),
+                     file);
+    EXPECT_EQ(test::read_h5<ParticleId>(file, "particles/id", H5T_NATIVE_UINT32), ids) << file;
+    EXPECT_EQ(test::read_h5_attribute<std::int64_t>(file, "/", "step", H5T_NATIVE_INT64), k) << file;
+  }
+  for (int k : {1, 2}) {
+    const Checkpoint c = read_checkpoint(dir + "/" + checkpoint_h5_name(k));
+    EXPECT_EQ(c.step, k);
+    std::vector<double> flat;
+    for (const Vec3d& x : c.particles.position) flat.insert(flat.end(), {x.x, x.y, x.z});
+    expect_positions(flat, expected_positions(scene, k), "checkpoint " + std::to_string(k));
+    EXPECT_EQ(c.particles.id, ids);
+    EXPECT_EQ(c.history.partner, std::vector<ParticleId>(c.history.partner.size(), kNoPartner));
+  }
+  std::filesystem::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, RunOutputTest, testing::ValuesIn(test::test_backends()), test::backend_label);
+
+}  // namespace
+}  // namespace gs
