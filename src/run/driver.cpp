@@ -328,6 +328,27 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
 
 }  // namespace
 
+std::unique_ptr<Simulation> start_scene(SceneSpec& scene, const SceneStart& start, Transport& transport) {
+  RunRequest request;
+  request.backend = start.options.backend;
+  request.exchange = start.exchange;
+  bool own_gpu = false;
+  on_every_rank(transport, [&] {
+    if (start.exchange != "auto" && start.exchange != "device" && start.exchange != "host")
+      throw std::invalid_argument("exchange must be auto, device or host, got " + start.exchange);
+    own_gpu = start.options.backend == Backend::cuda && select_cuda_device(transport.local_rank());
+  });
+  scene.kept_blocks = std::make_shared<KeptFillBlocks>(kept_blocks_budget(1 - transport.min(-transport.local_rank())));
+  if (start.check_packing) check_fit_on_ranks(scene, transport);
+  std::shared_ptr<DomainExchange> split;
+  if (transport.size() > 1) on_every_rank(transport, [&] { split = split_scene(scene, transport); });
+  if (start.check_packing) check_overlaps_on_ranks(scene, transport, split.get());
+  std::shared_ptr<DomainExchange> exchange = split ? with_link(split, request, transport, own_gpu) : nullptr;
+  auto sim = std::make_unique<Simulation>(scene, start.options, exchange);
+  scene.kept_blocks.reset();
+  return sim;
+}
+
 int run_scene(const RunRequest& request, Transport& transport) {
   // Each phase a rank can fail alone ends with every rank agreeing on it.
   const RunRequest& a = request;
