@@ -4,7 +4,7 @@
 # ranks free to use every core (--bind-to none). The run is stopped once it has
 # printed its set-up line (what follows is not set-up).
 #   bench/setup_fill.sh BUILD_DIR N [RANKS=1] [BACKEND=cpu] [OUTDIR=/tmp/setup_fill]
-# Prints the run's "set up in" line (scene load, decomposition, particles,
+# Prints the run's "set up in" line (scene load, packing checks, decomposition, particles,
 # first forces) and the wall-clock seconds until it.
 set -euo pipefail
 build=$1 count=$2 ranks=${3:-1} backend=${4:-cpu} out=${5:-/tmp/setup_fill}

@@ -1,5 +1,6 @@
 #include "io/checkpoint.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <future>
 
@@ -99,20 +100,39 @@ void add_checksum_header(Fnv1a64& sum, const Checkpoint& c, std::uint64_t partic
   sum.add_value(std::uint64_t(c.decomposition_cuts.size()));
 }
 
-std::uint64_t checkpoint_checksum(const Checkpoint& c) {
+std::vector<std::uint64_t> checkpoint_block_checksums(const Checkpoint& c) {
   const ParticleSnapshot& p = c.particles;
+  const HostHistory& h = c.history;
+  const std::size_t n = p.size(), rows = c.checksum_block_rows, slots = std::size_t(std::max(0, h.slots));
+  std::vector<std::uint64_t> sums;
+  auto add = [&](const auto& field, std::size_t per) {
+    if (field.empty()) return;  // an array the run does not keep
+    for (std::size_t a = 0; a < n; a += rows) {
+      Fnv1a64 sum;
+      sum.add(field.data() + a * per, (std::min(n, a + rows) - a) * per * sizeof(field[0]));
+      sums.push_back(sum.value());
+    }
+  };
+  for_each_particle_field(p, [&](const char*, const auto& field) { add(field, 1); });
+  add(p.force, 1);
+  add(p.torque, 1);
+  add(h.partner, slots);
+  for_each_history_field(h, [&](const char*, unsigned, const auto& field) { add(field, slots); });
+  return sums;
+}
+
+std::uint64_t checkpoint_checksum(const Checkpoint& c) { return checkpoint_checksum(c, checkpoint_block_checksums(c)); }
+
+std::uint64_t checkpoint_checksum(const Checkpoint& c, const std::vector<std::uint64_t>& block_checksums) {
   const HostHistory& h = c.history;
   std::vector<std::uint64_t> history_rows;
   for_each_history_field(h, [&](const char*, unsigned bit, const auto& field) {
     if ((bit & kFormat2HistoryFields) != 0 || !field.empty()) history_rows.push_back(field.size());
   });
   Fnv1a64 sum;
-  add_checksum_header(sum, c, p.size(), history_rows);
-  for_each_particle_field(p, [&](const char*, const auto& field) { sum.add_array(field); });
-  sum.add_array(p.force);
-  sum.add_array(p.torque);
-  sum.add_array(h.partner);
-  for_each_history_field(h, [&](const char*, unsigned, const auto& field) { sum.add_array(field); });
+  add_checksum_header(sum, c, c.particles.size(), history_rows);
+  sum.add_value(std::uint64_t(c.checksum_block_rows));
+  sum.add_array(block_checksums);
   for (const Wall& w : c.walls) {
     const auto state = wall_state(w);
     sum.add(state.data(), sizeof(state));
@@ -126,7 +146,12 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   validate(c, path);
   // The checksum (one serial pass over every byte) is summed on a thread of
   // its own while the datasets are written; it is needed only at the end.
-  std::future<std::uint64_t> checksum = std::async(std::launch::async, [&c] { return checkpoint_checksum(c); });
+  if (c.checksum_block_rows == 0) throw std::invalid_argument("write_checkpoint " + path + ": checksum blocks of 0 rows");
+  std::vector<std::uint64_t> blocks;
+  std::future<std::uint64_t> checksum = std::async(std::launch::async, [&c, &blocks] {
+    blocks = checkpoint_block_checksums(c);
+    return checkpoint_checksum(c, blocks);
+  });
   write_atomically(path, [&](const std::string& temporary) {
     h5::File f = h5::File::create(temporary);
     h5::write_string_attribute(f, "/", "kind", "grainstorm checkpoint");
@@ -143,7 +168,11 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
     write_walls(f, "walls", c.walls, {});
     write_decomposition(f, c);
     if (c.insertion) write_insertion(f, *c.insertion);
-    h5::write_attribute(f, "/", "checksum", checksum.get());
+    const std::uint64_t whole = checksum.get();
+    h5::create_group(f, "checksums");
+    h5::write_attribute(f, "checksums", "block_rows", std::int64_t(c.checksum_block_rows));
+    h5::write_vector(f, "checksums/blocks", blocks);
+    h5::write_attribute(f, "/", "checksum", whole);
     // Last: a file without the marker was not finished.
     h5::write_attribute(f, "/", "complete", std::int32_t(1));
     f.close();

@@ -28,7 +28,14 @@ struct CheckpointError : std::runtime_error {
 // 2: history/tangential holds the elastic tangential force [N] of the
 // incremental friction law; version 1 held a spring displacement [m], which
 // this law cannot continue from.
-constexpr int kCheckpointFormatVersion = 2;
+// 3: a checksum per block of particles of every array (checksums/blocks), so
+// that a rank verifies the blocks it reads; the file's `checksum` covers the
+// header values, that table, the walls and the rest. Version 2 is refused.
+constexpr int kCheckpointFormatVersion = 3;
+
+// Particles per checksummed block of a checkpoint's arrays (and per block a
+// reader reads).
+constexpr std::size_t kChecksumBlockRows = std::size_t(1) << 20;
 
 struct Checkpoint {
   long long step = 0;
@@ -44,6 +51,7 @@ struct Checkpoint {
   std::vector<double> decomposition_cuts;   // slab bounds along the axis [m]; empty when not slabs
   std::uint64_t random_state = 0;
   std::optional<InsertionState> insertion;  // a run with inlets only (io/checkpoint_insertion.hpp)
+  std::size_t checksum_block_rows = kChecksumBlockRows;  // as written, or read from the file
 };
 
 struct CheckpointExpectations {
@@ -53,7 +61,13 @@ struct CheckpointExpectations {
 // checkpoint_<step, 10 digits>.h5
 std::string checkpoint_h5_name(long long step);
 
-// FNV-1a 64 over every value of c, in the order docs/OUTPUT.md gives.
+// FNV-1a 64 of each block of checksum_block_rows particles of each array
+// c stores per particle (particle fields, force, torque, history; those a
+// run keeps), array by array in the order docs/OUTPUT.md gives.
+std::vector<std::uint64_t> checkpoint_block_checksums(const Checkpoint& c);
+// FNV-1a 64 over c's header values, the block size, the block checksums, the
+// walls, the cuts and the insertion state: the file's `checksum`.
+std::uint64_t checkpoint_checksum(const Checkpoint& c, const std::vector<std::uint64_t>& block_checksums);
 std::uint64_t checkpoint_checksum(const Checkpoint& c);
 
 // The checksum's values before the arrays: c's step, times, hashes and

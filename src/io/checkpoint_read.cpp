@@ -49,6 +49,10 @@ void check_header(const h5::File& f) {
     refuse(path, "format version 1, but this grainstorm reads version " + std::to_string(kCheckpointFormatVersion) +
                      ": version 1 stored the tangential springs as displacements [m], this friction law carries "
                      "their elastic force [N]; rerun from the scene");
+  if (version == 2)
+    refuse(path, "format version 2, but this grainstorm reads version " + std::to_string(kCheckpointFormatVersion) +
+                     ": version 2 had one checksum over the whole file, which every rank of a restart had to read; "
+                     "continue it with the grainstorm that wrote it, or rerun from the scene");
   if (version != kCheckpointFormatVersion)
     refuse(path, "format version " + std::to_string(version) + ", but this grainstorm reads version " +
                      std::to_string(kCheckpointFormatVersion));
@@ -86,14 +90,18 @@ void for_each_position_block_of(const h5::File& f, hsize_t n, hsize_t first, hsi
 }
 
 
-// Reads the checkpoint's arrays a block of particles at a time, adding each
-// block to the checksum in the order checkpoint_checksum gives (so the file is
-// verified whole), and keeps the entries of the particles in `rows` (ascending
-// indices; all of them when `all`). Host memory is one block and what is kept.
+// Reads the checkpoint's arrays a block of particles at a time (the blocks
+// the file checksums), verifying each block it reads against its stored
+// checksum, and keeps the entries of the particles in `rows` (ascending
+// indices; all of them when `all`). A block that holds none of them is not
+// read: each rank verifies what it reads. Host memory is one block and what
+// is kept.
 class ArrayStream {
  public:
-  ArrayStream(const h5::File& f, hsize_t n, const std::vector<std::size_t>& rows, bool all, Fnv1a64& sum)
-      : f_(f), n_(n), rows_(rows), all_(all), sum_(sum) {}
+  ArrayStream(const h5::File& f, hsize_t n, hsize_t block_rows, const std::vector<std::uint64_t>& sums)
+      : f_(f), n_(n), block_rows_(block_rows), blocks_((n + block_rows - 1) / block_rows), sums_(sums) {}
+
+  void keep(const std::vector<std::size_t>* rows) { rows_ = rows; }
 
   // Dataset `path` of shape `dims` into `out`, `per` elements per particle (1
   // for particle fields, the slots for history); dims[0] / n rows per particle
@@ -101,34 +109,58 @@ class ArrayStream {
   template <class T>
   void read(const std::string& path, const std::vector<hsize_t>& dims, hsize_t per, std::vector<T>& out) {
     out.clear();
-    if (dims[0] == 0) return h5::require_shape(f_, path, dims);
-    const hsize_t along = dims[0] / n_;
-    if (all_) out.reserve(std::size_t(n_ * per));
-    std::vector<T> block;
+    if (dims[0] == 0 || per == 0) return h5::require_shape(f_, path, dims);
+    if (!rows_) out.reserve(std::size_t(n_ * per));
     std::size_t next = 0;  // the next kept row
-    for (hsize_t a = 0; a < n_; a += kBlockRows) {
-      const hsize_t b = std::min(n_, a + kBlockRows);
-      block.resize(std::size_t((b - a) * per));
-      h5::read_rows_raw(f_, path, Stored<T>::memory(), Stored<T>::file(), block.data(), dims, a * along,
-                         (b - a) * along);
-      sum_.add_array(block);
-      if (all_) {
-        out.insert(out.end(), block.begin(), block.end());
-        continue;
-      }
-      for (; next < rows_.size() && rows_[next] < b; ++next) {
-        const auto from = block.begin() + std::ptrdiff_t((rows_[next] - a) * per);
+    for_each_block<T>(path, array_++, dims, per, [&](hsize_t, hsize_t b) {
+      return !rows_ || (next < rows_->size() && (*rows_)[next] < b);
+    }, [&](hsize_t a, hsize_t b, const std::vector<T>& block) {
+      if (!rows_) return out.insert(out.end(), block.begin(), block.end()), void();
+      for (; next < rows_->size() && (*rows_)[next] < b; ++next) {
+        const auto from = block.begin() + std::ptrdiff_t(((*rows_)[next] - a) * per);
         out.insert(out.end(), from, from + std::ptrdiff_t(per));
       }
+    });
+  }
+
+  // Calls use(first, last, block) for the verified blocks [first, last) of
+  // the array `path`, the `array`th with checksums, that `wanted(first,
+  // last)` asks for.
+  template <class T, class Wanted, class Use>
+  void for_each_block(const std::string& path, std::size_t array, const std::vector<hsize_t>& dims, hsize_t per,
+                      Wanted&& wanted, Use&& use) {
+    const hsize_t along = dims[0] / n_;
+    const std::size_t first_sum = array * std::size_t(blocks_);
+    std::vector<T> block;
+    for (hsize_t a = 0, k = 0; a < n_; a += block_rows_, ++k) {
+      const hsize_t b = std::min(n_, a + block_rows_);
+      if (!wanted(a, b)) continue;
+      block.resize(std::size_t((b - a) * per));
+      h5::read_rows_raw(f_, path, Stored<T>::memory(), Stored<T>::file(), block.data(), dims, a * along,
+                        (b - a) * along);
+      Fnv1a64 sum;
+      sum.add_array(block);
+      const std::size_t at = first_sum + std::size_t(k);
+      if (at >= sums_.size())
+        refuse(f_.path(), "checksums/blocks has " + std::to_string(sums_.size()) + " entries, too few for " + path);
+      if (sum.value() != sums_[at])
+        refuse(f_.path(), "checksum mismatch in " + path + ", particles " + std::to_string(a) + " to " +
+                              std::to_string(b - 1) + ": stored " + hex(sums_[at]) + ", data gives " +
+                              hex(sum.value()) + " (the file was damaged after it was written)");
+      use(a, b, block);
     }
   }
 
+  // Arrays read so far (each non-empty one has a checksum per block).
+  std::size_t arrays() const { return array_; }
+  hsize_t blocks() const { return blocks_; }
+
  private:
   const h5::File& f_;
-  hsize_t n_;
-  const std::vector<std::size_t>& rows_;
-  bool all_;
-  Fnv1a64& sum_;
+  hsize_t n_, block_rows_, blocks_;
+  const std::vector<std::uint64_t>& sums_;
+  const std::vector<std::size_t>* rows_ = nullptr;  // null: every row
+  std::size_t array_ = 0;
 };
 
 template <class T>
@@ -150,17 +182,22 @@ hsize_t history_entries(const h5::File& f, const std::string& path, hsize_t full
   }
 }
 
-// The indices of the particles whose stored position `keep` accepts.
-std::vector<std::size_t> kept_rows(const h5::File& f, hsize_t n, const std::function<bool(const Vec3d&)>& keep) {
+// The indices of the particles whose stored position `keep` accepts, from
+// the verified blocks of particles/position (array `position` of the stream).
+std::vector<std::size_t> kept_rows(ArrayStream& stream, std::size_t position_array, hsize_t n,
+                                   const std::function<bool(const Vec3d&)>& keep) {
   std::vector<std::size_t> rows;
-  for_each_position_block_of(f, n, 0, n, [&](std::size_t first, const std::vector<Vec3d>& x) {
-    for (std::size_t i = 0; i < x.size(); ++i)
-      if (keep(x[i])) rows.push_back(first + i);
-  });
+  stream.for_each_block<Vec3d>("particles/position", position_array, {n, 3}, 1, [](hsize_t, hsize_t) { return true; },
+                               [&](hsize_t a, hsize_t, const std::vector<Vec3d>& x) {
+                                 for (std::size_t i = 0; i < x.size(); ++i)
+                                   if (keep(x[i])) rows.push_back(std::size_t(a) + i);
+                               });
   return rows;
 }
 
-Checkpoint read_contents(const h5::File& f, const std::function<bool(const Vec3d&)>& keep, std::uint64_t& checksum) {
+// The header values, walls, cuts and insertion state, and the table of block
+// checksums, verified against the file's checksum: every rank checks these.
+Checkpoint read_header(const h5::File& f, std::vector<std::uint64_t>& block_sums) {
   Checkpoint c;
   c.step = h5::read_attribute<std::int64_t>(f, "/", "step");
   c.time = h5::read_attribute<double>(f, "/", "time");
@@ -174,7 +211,6 @@ Checkpoint read_contents(const h5::File& f, const std::function<bool(const Vec3d
   h.slots = h5::read_attribute<std::int32_t>(f, "history", "slots");
   if (h.slots < 0 || h.slots > kMaxContactSlots)
     refuse(f.path(), "history has " + std::to_string(h.slots) + " slots per particle");
-  const hsize_t slots = hsize_t(h.slots);
   c.walls = read_walls(f, "walls");
   c.rank_count = h5::read_attribute<std::int32_t>(f, "decomposition", "rank_count");
   c.decomposition_axis = h5::read_attribute<std::int32_t>(f, "decomposition", "axis");
@@ -182,55 +218,78 @@ Checkpoint read_contents(const h5::File& f, const std::function<bool(const Vec3d
   if (cuts.size() != 1) refuse(f.path(), "decomposition/cuts is not one-dimensional");
   c.decomposition_cuts = h5::read_array<double>(f, "decomposition/cuts", cuts);
   c.insertion = read_insertion(f);
+  const std::int64_t block_rows = h5::read_attribute<std::int64_t>(f, "checksums", "block_rows");
+  if (block_rows < 1) refuse(f.path(), "checksums/block_rows is " + std::to_string(block_rows));
+  c.checksum_block_rows = std::size_t(block_rows);
+  const std::vector<hsize_t> table = h5::dims_of(f, "checksums/blocks");
+  if (table.size() != 1) refuse(f.path(), "checksums/blocks is not one-dimensional");
+  block_sums = h5::read_array<std::uint64_t>(f, "checksums/blocks", table);
 
-  std::vector<hsize_t> entries;  // per history field
-  for_each_history_field(h, [&](const char* name, unsigned, auto& field) {
-    using T = typename std::decay_t<decltype(field)>::value_type;
-    entries.push_back(history_entries<T>(f, std::string("history/") + name, n * slots));
-  });
-
+  const hsize_t slots = hsize_t(h.slots);
   std::vector<std::uint64_t> history_rows;  // those the checksum counts
-  {
-    std::size_t k = 0;
-    for_each_history_field(h, [&](const char*, unsigned bit, auto&) {
-      const hsize_t e = entries[k++];
-      if ((bit & kFormat2HistoryFields) != 0 || e > 0) history_rows.push_back(std::uint64_t(e));
-    });
-  }
+  for_each_history_field(h, [&](const char* name, unsigned bit, auto& field) {
+    using T = typename std::decay_t<decltype(field)>::value_type;
+    const hsize_t e = history_entries<T>(f, std::string("history/") + name, n * slots);
+    if ((bit & kFormat2HistoryFields) != 0 || e > 0) history_rows.push_back(std::uint64_t(e));
+  });
   Fnv1a64 sum;
   add_checksum_header(sum, c, std::uint64_t(n), history_rows);
-
-  const bool all = !keep;
-  const std::vector<std::size_t> rows = all ? std::vector<std::size_t>() : kept_rows(f, n, keep);
-  ArrayStream stream(f, n, rows, all, sum);
-  // An optional field (ParticleField bit) is stored only by a run that kept
-  // it, and counts in the checksum only then (checkpoint_checksum).
-  for_each_particle_field_bit(p, [&](const char* name, unsigned bit, auto& field) {
-    using T = typename std::decay_t<decltype(field)>::value_type;
-    const std::string path = std::string("particles/") + name;
-    if (bit == kEveryRun || h5::exists(f, path)) stream.read(path, shape_of<T>(n), 1, field);
-    else field.clear();
-  });
-  stream.read("particles/force", shape_of<Vec3d>(n), 1, p.force);
-  stream.read("particles/torque", shape_of<Vec3d>(n), 1, p.torque);
-  stream.read("history/partner", {n, slots}, slots, h.partner);
-  std::size_t k = 0;
-  for_each_history_field(h, [&](const char* name, unsigned, auto& field) {
-    using T = typename std::decay_t<decltype(field)>::value_type;
-    const hsize_t e = entries[k++];
-    const std::string path = std::string("history/") + name;
-    if (e > 0) return stream.read(path, shape_of<T>(e), slots, field);
-    field.clear();
-    if constexpr (std::is_same_v<T, Vec3d>) h5::require_shape(f, path, {0, 3});
-  });
+  sum.add_value(std::uint64_t(c.checksum_block_rows));
+  sum.add_array(block_sums);
   for (const Wall& w : c.walls) {
     const auto state = wall_state(w);
     sum.add(state.data(), sizeof(state));
   }
   sum.add_array(c.decomposition_cuts);
   if (c.insertion) add_insertion(sum, *c.insertion);
-  checksum = sum.value();
+  const auto stored = h5::read_attribute<std::uint64_t>(f, "/", "checksum");
+  if (stored != sum.value())
+    refuse(f.path(), "checksum mismatch: stored " + hex(stored) + ", the header, walls and block checksums give " +
+                         hex(sum.value()) + " (the file was damaged after it was written)");
   return c;
+}
+
+// The particle arrays: of each, the blocks that hold kept particles, each
+// verified against its checksum.
+void read_arrays(const h5::File& f, Checkpoint& c, hsize_t n, const std::vector<std::uint64_t>& block_sums,
+                 const std::function<bool(const Vec3d&)>& keep) {
+  ParticleSnapshot& p = c.particles;
+  HostHistory& h = c.history;
+  const hsize_t slots = hsize_t(h.slots);
+  ArrayStream stream(f, n, hsize_t(c.checksum_block_rows), block_sums);
+  // An optional field (ParticleField bit) is stored only by a run that kept it.
+  auto stored = [&f](const std::string& path, unsigned bit) { return bit == kEveryRun || h5::exists(f, path); };
+  std::size_t position_array = 0, arrays = 0;
+  for_each_particle_field_bit(p, [&](const char* name, unsigned bit, auto&) {
+    if (std::string(name) == "position") position_array = arrays;
+    if (stored(std::string("particles/") + name, bit)) ++arrays;
+  });
+  std::vector<std::size_t> rows;
+  if (keep) {
+    rows = kept_rows(stream, position_array, n, keep);
+    stream.keep(&rows);
+  }
+  for_each_particle_field_bit(p, [&](const char* name, unsigned bit, auto& field) {
+    using T = typename std::decay_t<decltype(field)>::value_type;
+    const std::string path = std::string("particles/") + name;
+    if (stored(path, bit)) stream.read(path, shape_of<T>(n), 1, field);
+    else field.clear();
+  });
+  stream.read("particles/force", shape_of<Vec3d>(n), 1, p.force);
+  stream.read("particles/torque", shape_of<Vec3d>(n), 1, p.torque);
+  stream.read("history/partner", {n, slots}, slots, h.partner);
+  for_each_history_field(h, [&](const char* name, unsigned, auto& field) {
+    using T = typename std::decay_t<decltype(field)>::value_type;
+    const std::string path = std::string("history/") + name;
+    const hsize_t e = history_entries<T>(f, path, n * slots);
+    if (e > 0) return stream.read(path, shape_of<T>(e), slots, field);
+    field.clear();
+    if constexpr (std::is_same_v<T, Vec3d>) h5::require_shape(f, path, {0, 3});
+  });
+  const std::size_t expected = stream.arrays() * std::size_t(stream.blocks());
+  if (block_sums.size() != expected)
+    refuse(f.path(), "checksums/blocks has " + std::to_string(block_sums.size()) + " entries, the arrays have " +
+                         std::to_string(expected) + " blocks");
 }
 
 }  // namespace
@@ -240,12 +299,9 @@ Checkpoint read_checkpoint(const std::string& path, const CheckpointExpectations
   try {
     h5::File f = open_checked(path);
     check_header(f);
-    std::uint64_t computed = 0;
-    Checkpoint c = read_contents(f, keep, computed);
-    const auto stored = h5::read_attribute<std::uint64_t>(f, "/", "checksum");
-    if (stored != computed)
-      refuse(path, "checksum mismatch: stored " + hex(stored) + ", data gives " + hex(computed) +
-                       " (the file was damaged after it was written)");
+    std::vector<std::uint64_t> block_sums;
+    Checkpoint c = read_header(f, block_sums);
+    read_arrays(f, c, hsize_t(h5::read_row_count(f, "/", "particle_count", "particles/id")), block_sums, keep);
     if (expect.scene_hash && *expect.scene_hash != c.scene_hash)
       refuse(path, "it was written for scene hash " + hex(c.scene_hash) + ", but this scene has hash " +
                        hex(*expect.scene_hash) + " (another scene file, or the scene was edited since)");

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "run/insertion_log.hpp"
+#include "run/packing_on_ranks.hpp"
 #include "run/output_directory.hpp"
 #include "run/run_measurements.hpp"
 #include "run/run_output.hpp"
@@ -25,6 +26,7 @@
 #include "engine/simulation.hpp"
 #include "io/fnv1a.hpp"
 #include "io/restart.hpp"
+#include "scene/kept_fill_blocks.hpp"
 #include "scene/scene_loader.hpp"
 
 namespace gs {
@@ -328,6 +330,27 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
 
 }  // namespace
 
+std::unique_ptr<Simulation> start_scene(SceneSpec& scene, const SceneStart& start, Transport& transport) {
+  RunRequest request;
+  request.backend = start.options.backend;
+  request.exchange = start.exchange;
+  bool own_gpu = false;
+  on_every_rank(transport, [&] {
+    if (start.exchange != "auto" && start.exchange != "device" && start.exchange != "host")
+      throw std::invalid_argument("exchange must be auto, device or host, got " + start.exchange);
+    own_gpu = start.options.backend == Backend::cuda && select_cuda_device(transport.local_rank());
+  });
+  scene.kept_blocks = std::make_shared<KeptFillBlocks>(kept_blocks_budget(1 - transport.min(-transport.local_rank())));
+  if (start.check_packing) check_fit_on_ranks(scene, transport);
+  std::shared_ptr<DomainExchange> split;
+  if (transport.size() > 1) on_every_rank(transport, [&] { split = split_scene(scene, transport); });
+  if (start.check_packing) check_overlaps_on_ranks(scene, transport, split.get());
+  std::shared_ptr<DomainExchange> exchange = split ? with_link(split, request, transport, own_gpu) : nullptr;
+  auto sim = std::make_unique<Simulation>(scene, start.options, exchange);
+  scene.kept_blocks.reset();
+  return sim;
+}
+
 int run_scene(const RunRequest& request, Transport& transport) {
   // Each phase a rank can fail alone ends with every rank agreeing on it.
   const RunRequest& a = request;
@@ -336,7 +359,7 @@ int run_scene(const RunRequest& request, Transport& transport) {
   std::uint64_t hash = 0;
   on_every_rank(transport, [&] {
     check_request(a);
-    loaded = load_scene(a.scene);
+    loaded = load_scene(a.scene, PackingChecks::by_caller);  // below, each rank over its own particles
     hash = scene_hash(file_text(a.scene));
   });
   const SceneSpec& scene = *loaded;
@@ -359,14 +382,24 @@ int run_scene(const RunRequest& request, Transport& transport) {
     if (!a.restart.empty() && transport.size() > 1) share = checkpoint_position_share(a.restart, transport);
   });
   const double load_seconds = seconds_since(setup_start);
+  // A new run's fill blocks are made once on each rank: kept from the fit
+  // check through the split and the overlap check to the upload.
+  if (a.restart.empty()) {
+    loaded->kept_blocks = std::make_shared<KeptFillBlocks>(kept_blocks_budget(1 - transport.min(-transport.local_rank())));
+    check_fit_on_ranks(scene, transport);
+  }
+  const double check_seconds = seconds_since(setup_start) - load_seconds;
   // The split's one collective (summing the counts) comes before anything
-  // in it can fail, so every rank reaches it.
+  // in it can fail, so every rank reaches it (the fit check made its blocks).
   if (transport.size() > 1)
     on_every_rank(transport, [&] {
       split = a.restart.empty() ? split_scene(scene, transport) : split_restart(scene, transport, share);
     });
   share = {};
-  const double split_seconds = seconds_since(setup_start) - load_seconds;
+  const double split_seconds = seconds_since(setup_start) - load_seconds - check_seconds;
+  const auto overlap_start = Clock::now();
+  if (a.restart.empty()) check_overlaps_on_ranks(scene, transport, split.get());
+  const double packing_seconds = check_seconds + seconds_since(overlap_start);
   on_every_rank(transport, [&] {
     if (a.restart.empty()) return;
     CheckpointExpectations expect;
@@ -381,6 +414,7 @@ int run_scene(const RunRequest& request, Transport& transport) {
   std::unique_ptr<Simulation> sim = start(scene, a, transport, split, restart, own_gpu);
   restart.reset();  // the simulation holds the state now
   loaded->particles = {};  // and this rank's own particles
+  loaded->kept_blocks.reset();
   const double setup_seconds = seconds_since(setup_start);
   RankExchange* exchange = sim->exchange();
   std::unique_ptr<RunOutput> output;
@@ -397,8 +431,9 @@ int run_scene(const RunRequest& request, Transport& transport) {
           GS_VERSION, a.scene.c_str(), particles, backend_name(a.backend), transport.size(),
           transport.size() > 1 ? "s" : "", scene.time_step, scene.contact_time, sim->step_count(), total);
   const Simulation::SetupTimings& st = sim->setup_timings();
-  out.log("set up in %.2f s (scene %.2f s, decomposition %.2f s, particles %.2f s, first forces %.2f s)\n",
-          setup_seconds, load_seconds, split_seconds, st.particles, st.first_forces);
+  out.log("set up in %.2f s (scene %.2f s, packing checks %.2f s, decomposition %.2f s, particles %.2f s, first "
+          "forces %.2f s)\n",
+          setup_seconds, load_seconds, packing_seconds, split_seconds, st.particles, st.first_forces);
   const HostThreads host = host_threads();
   out.log("host threads (rank 0): %d on %d core%s\n", host.threads, host.cores, host.cores > 1 ? "s" : "");
   if (host.threads > host.cores)

@@ -7,10 +7,12 @@
 // installs the signal handlers; anything else that runs scenes (a benchmark,
 // a test, a Python module) calls run_scene the same way.
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "backend/backend.hpp"
 #include "comm/transport.hpp"
+#include "engine/simulation.hpp"
 #include "scene/scene.hpp"
 
 namespace gs {
@@ -40,6 +42,24 @@ void check_request(const RunRequest& request);
 // on bad input (every rank the same RankFailure), a SimulationFault (after
 // logging it and writing the fault snapshot) or a failure to write.
 int run_scene(const RunRequest& request, Transport& transport);
+
+// How a run of a scene built in code starts (a benchmark, a test, a Python
+// module): the simulation's options, and whether the packing checks run.
+struct SceneStart {
+  RunOptions options;
+  // The packing checks of a loaded scene (scene/packing_check.hpp), spread
+  // over the ranks; off for particles placed on purpose (a bed pressed into
+  // overlap) or already checked.
+  bool check_packing = true;
+  std::string exchange = "auto";  // as RunRequest::exchange
+};
+
+// Collective over `transport`'s ranks: sets `scene` up as run_scene sets up a
+// new run (the packing checks on the ranks, the split, each rank's own
+// particles made once, the first forces) and hands back the simulation, to be
+// stepped with Simulation::run. Throws on bad input (every rank the same
+// RankFailure). `scene` keeps its particles; its kept fill blocks are let go.
+std::unique_ptr<Simulation> start_scene(SceneSpec& scene, const SceneStart& start, Transport& transport);
 
 // "1.5 MiB"
 std::string human_bytes(double bytes);

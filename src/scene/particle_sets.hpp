@@ -3,6 +3,7 @@
 // shares, and a lattice kept as its description.
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/types.hpp"
@@ -75,6 +76,16 @@ struct RandomFillSource {
   ParticleId first_id = 0;
   std::size_t count = 0;
   FillBlocks blocks;
+};
+
+// Where a set of particles was defined, for errors found after the scene
+// was loaded (the packing checks of a run's ranks): the set's particles from
+// `first` up to the next set's, at `line` of the scene file under `key`
+// (a key path, e.g. particles[1].random_fill).
+struct ParticleSetOrigin {
+  std::size_t first = 0;
+  int line = 1;
+  std::string key;
 };
 
 }  // namespace gs

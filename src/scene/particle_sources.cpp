@@ -7,6 +7,7 @@
 
 #include "scene/fill_blocks.hpp"
 #include "scene/generators.hpp"
+#include "scene/kept_fill_blocks.hpp"
 
 namespace gs {
 
@@ -108,12 +109,21 @@ ParticleStream::Block ParticleStream::fill_block(const RandomFillSource& fill, s
     for (const CachedBlock& c : cache_)
       if (c.fill == &fill && c.block == b) return c.particles;
   }
+  const std::size_t which = std::size_t(&fill - scene_.fills.data());
+  KeptFillBlocks* kept = scene_.kept_blocks.get();
+  if (kept)
+    if (Block found = kept->find(which, b)) return found;
   // Made outside the lock: another thread may make the same block meanwhile, with the same bits.
   auto made = std::make_shared<std::vector<ParticleInit>>();
   const SpheresNear earlier = [this, &fill](const Vec3d& lo, const Vec3d& hi, const SphereVisitor& visit) {
     for_each_near(fill.first_id, lo, hi, visit);
   };
   generate_fill_block(fill, b, earlier, *made);
+  if (kept) {
+    Vec3d lo, hi;
+    block_box(fill.blocks, b, lo, hi);
+    kept->offer(which, b, lo, hi, made);
+  }
   const std::lock_guard<std::mutex> lock(cache_mutex_);
   if (cache_.size() < kCachedBlocks) cache_.push_back({&fill, b, made});
   else cache_[cache_next_++ % kCachedBlocks] = {&fill, b, made};
@@ -259,6 +269,15 @@ std::vector<ParticleInit> select_particles(const SceneSpec& scene, const std::fu
   for_each_selected(
       scene, keep, [&out](std::size_t n) { out.resize(n); },
       [&out](std::size_t k, const ParticleInit& p) { out[k] = p; });
+  return out;
+}
+
+std::vector<ParticleInit> select_particles(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep,
+                                           const KeepWindow& window) {
+  std::vector<ParticleInit> out;
+  for_each_selected_block(
+      scene, keep, window, std::numeric_limits<std::size_t>::max(), [&out](std::size_t n) { out.resize(n); },
+      [&out](std::size_t k, const ParticleInit& p) { out[k] = p; }, [](std::size_t, std::size_t) {});
   return out;
 }
 

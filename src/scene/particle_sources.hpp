@@ -32,7 +32,8 @@ class LatticeSites {
 // The scene's particles as one sequence in id order: the explicit particles
 // (SceneSpec::particles, ascending ids) merged with the lattices and random
 // fills by id. A fill's blocks are made on demand (scene/fill_blocks.hpp),
-// the last few kept for the next caller (any thread).
+// the last few kept for the next caller (any thread), and those the scene's
+// KeptFillBlocks keeps (when it has one) for every later stream.
 class ParticleStream {
  public:
   explicit ParticleStream(const SceneSpec& scene);
@@ -121,6 +122,11 @@ void for_each_selected_block(const SceneSpec& scene, const std::function<bool(co
                              const KeepWindow& window, std::size_t block, const std::function<void(std::size_t)>& size,
                              const std::function<void(std::size_t, const ParticleInit&)>& write,
                              const std::function<void(std::size_t first, std::size_t count)>& done);
+
+// The particles `keep` accepts within the window (random-fill blocks outside
+// it are never made), in id order.
+std::vector<ParticleInit> select_particles(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep,
+                                           const KeepWindow& window);
 
 // Positions of particles [first, last) of the sequence, in blocks generated
 // on every thread and handed to `use` one after the other, in order.

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -20,6 +21,8 @@
 #include "walls/wall.hpp"
 
 namespace gs {
+
+class KeptFillBlocks;
 
 // A bad scene: the message names the key and the line of the file.
 struct SceneError : std::runtime_error {
@@ -108,6 +111,10 @@ struct SceneSpec : SceneSettings {
   std::vector<ParticleInit> particles;
   std::vector<LatticeSource> lattices;
   std::vector<RandomFillSource> fills;
+  std::vector<ParticleSetOrigin> set_origins;  // ascending `first`, one per set
+  // Fill blocks made once and kept for a rank's later set-up passes
+  // (scene/kept_fill_blocks.hpp); none kept when null.
+  std::shared_ptr<KeptFillBlocks> kept_blocks;
 };
 
 }  // namespace gs

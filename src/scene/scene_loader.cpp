@@ -240,7 +240,7 @@ void resolve_time_step(const Map& top, SceneSpec& s) {
 
 }  // namespace
 
-SceneSpec parse_scene(const std::string& yaml_text, const std::string& source) {
+SceneSpec parse_scene(const std::string& yaml_text, const std::string& source, PackingChecks checks) {
   const YAML::Node root = load_document(yaml_text, source);
   SceneSpec s;
   s.path = source;
@@ -248,7 +248,7 @@ SceneSpec parse_scene(const std::string& yaml_text, const std::string& source) {
   parse_globals(top, s);
   parse_materials(top, s);
   parse_walls(top, s);
-  parse_particles(top, s);
+  parse_particles(top, s, checks);
   parse_inlets(top, s);
   parse_pairs(top, s);
   check_periodic_box(top, s);
@@ -263,12 +263,12 @@ SceneSpec parse_scene(const std::string& yaml_text, const std::string& source) {
   return s;
 }
 
-SceneSpec load_scene(const std::string& path) {
+SceneSpec load_scene(const std::string& path, PackingChecks checks) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ":1: scene: cannot open the scene file");
   std::ostringstream text;
   text << in.rdbuf();  // an empty file leaves `text` empty, which parse_scene reports
-  return parse_scene(text.str(), path);
+  return parse_scene(text.str(), path, checks);
 }
 
 }  // namespace gs

@@ -6,6 +6,7 @@
 
 #include "scene/fill_blocks.hpp"
 #include "scene/generators.hpp"
+#include "scene/packing_check.hpp"
 #include "scene/particle_sources.hpp"
 #include "scene/scene_loader.hpp"
 #include "scene/scene_sections.hpp"
@@ -95,11 +96,10 @@ SizeSpec parse_sizes(const Map& m) {
 
 namespace {
 
-// Particles from `begin` up to the next origin were defined at `where`.
-struct Origin {
-  std::size_t begin;
-  Val where;
-};
+// Where the particles from id `first` on were defined.
+void add_origin(SceneSpec& s, std::size_t first, const Val& where) {
+  s.set_origins.push_back({first, where.line, where.path});
+}
 
 // Runs a generator; its complaints become errors at the set's line.
 template <class F>
@@ -146,7 +146,7 @@ void add_random_fill(SceneSpec& s, const Val& v) {
   generate(v, [&] { s.fills.push_back(make_fill_source(spec, first)); });
 }
 
-void add_list(SceneSpec& s, const Val& v, std::vector<Origin>& origins) {
+void add_list(SceneSpec& s, const Val& v) {
   for_each_item(v, [&](const Val& item, std::size_t) {
     const Map m(item, {"position", "radius", "material", "velocity", "angular_velocity", "marker", "frozen"});
     const ParticleTemplate t = parse_set_template(s, m);
@@ -161,106 +161,31 @@ void add_list(SceneSpec& s, const Val& v, std::vector<Origin>& origins) {
     p.angular_velocity = t.angular_velocity;
     p.marker = t.marker;
     p.frozen = std::uint8_t(t.frozen);
-    origins.push_back({id, item});
+    add_origin(s, id, item);
     s.particles.push_back(p);
   });
 }
 
-std::string describe(const ParticleInit& p) {
-  return "particle " + std::to_string(p.id) + " at " + str(p.position) + " with radius " + str(p.radius);
-}
-
-// Rounding in generated positions must not turn "touching" into "overlapping".
-constexpr double kTouchTolerance = 1e-9;
-
-// What keeps p from fitting the domain and the walls at t = 0; empty when it fits.
-std::string misfit(const SceneSpec& s, const ParticleInit& p) {
-  const double slack = kTouchTolerance * p.radius;
-  const Vec3d& c = p.position;
-  const Vec3d &lo = s.domain_min, &hi = s.domain_max;
-  const double r = p.radius - slack;
-  if (c.x - r < lo.x || c.y - r < lo.y || c.z - r < lo.z || c.x + r > hi.x || c.y + r > hi.y || c.z + r > hi.z)
-    return describe(p) + " is not inside the domain " + str(lo) + " .. " + str(hi);
-  for (std::size_t w = 0; w < s.walls.size(); ++w) {
-    if (!timeline_of(s.wall_timelines, w).active.contains(0)) continue;  // not there at t = 0
-    const double depth = wall_penetration(s.walls[w], c, p.radius);
-    if (depth > slack)
-      return describe(p) + " cuts " + str(depth) + " m into wall " + quoted(s.wall_names[w]) + " at t = 0";
-  }
-  return "";
-}
-
-const Val& origin_of(const std::vector<Origin>& origins, std::size_t particle) {
-  auto it = std::upper_bound(origins.begin(), origins.end(), particle,
-                             [](std::size_t i, const Origin& o) { return i < o.begin; });
-  return std::prev(it)->where;
-}
-
-// Runs f; a set that cannot be generated (a random fill too full) is an
-// error at that set's line.
-template <class F>
-void generate_sets(const std::vector<Origin>& origins, F&& f) {
-  try {
-    f();
-  } catch (const GenerateError& e) {
-    fail(e.set_first == GenerateError::kUnknown ? origins.front().where : origin_of(origins, e.set_first), e.what());
-  }
-}
-
-// The first particle (in id order) that does not fit is reported; the
-// search runs on every thread, over lattices and fills generated chunk by chunk.
-void check_fit(const SceneSpec& s, const std::vector<Origin>& origins) {
-  const std::size_t n = particle_count(s);
-  std::size_t bad = n;
-  generate_sets(origins, [&] { bad = find_first(s, 0, n, [&s](const ParticleInit& p) { return !misfit(s, p).empty(); }); });
-  if (bad == n) return;
-  std::vector<ParticleInit> p;
-  ParticleStream(s).generate(bad, bad + 1, p);
-  fail(origin_of(origins, bad), misfit(s, p.front()));
-}
-
-// `generated_alone`: the particles are one lattice or random fill, which
-// cannot overlap among themselves, so the costly pairwise check is skipped.
-// Otherwise every particle is generated for it (memory for all of them).
-void check_packing(const SceneSpec& s, const std::vector<Origin>& origins, bool generated_alone) {
-  check_fit(s, origins);
-  if (generated_alone) return;
-  std::vector<ParticleInit> all;
-  generate_sets(origins, [&] { all = all_particles(s); });
-  std::size_t a = 0, b = 0;
-  bool overlap = false;
-  generate(origins.front().where, [&] { overlap = find_overlap(all, a, b, kTouchTolerance); });
-  if (overlap) {
-    const Val& first = origin_of(origins, a);
-    fail(origin_of(origins, b), describe(all[b]) + " overlaps " + describe(all[a]) + " (" + first.path +
-                                    ", line " + std::to_string(first.line) + ")");
-  }
-}
-
 }  // namespace
 
-void parse_particles(const Map& top, SceneSpec& s) {
+void parse_particles(const Map& top, SceneSpec& s, PackingChecks checks) {
   const Val list = top.has("inlets") ? top.opt("particles") : top.get("particles");
   if (!list.present()) return;
-  std::vector<Origin> origins;
-  std::size_t sets = 0;
-  bool any_list = false;
   for_each_item(list, [&](const Val& item, std::size_t) {
     const Map m(item, {"lattice", "random_fill", "list"});
     const std::string kind = m.one_of({"lattice", "random_fill", "list"});
     const Val set = m.get(kind);
-    ++sets;
-    any_list = any_list || kind == "list";
-    origins.push_back({particle_count(s), set});
+    add_origin(s, particle_count(s), set);
     if (kind == "lattice") add_lattice(s, set);
     if (kind == "random_fill") add_random_fill(s, set);
-    if (kind == "list") add_list(s, set, origins);
+    if (kind == "list") add_list(s, set);
   });
   if (particle_count(s) == 0) {
     if (top.has("inlets")) return;  // a scene with inlets may start empty (a silo being filled)
     fail(list, "the scene has no particles");
   }
-  check_packing(s, origins, sets == 1 && !any_list);
+  // A run's ranks check the particles each makes anyway (src/run/packing_on_ranks.hpp).
+  if (checks == PackingChecks::here) check_packing(s);
 }
 
 }  // namespace gs::scene_yaml

@@ -2,6 +2,7 @@
 // Section parsers of the scene loader that live outside scene_loader.cpp.
 #include "scene/fill_region.hpp"
 #include "scene/scene_yaml.hpp"
+#include "scene/scene_loader.hpp"
 
 namespace gs::scene_yaml {
 
@@ -42,7 +43,7 @@ void check_inlet_rates(const Map& top, SceneSpec& s);
 
 // `particles:` -> s.particles, then checks them against the domain, the walls
 // and each other (needs s.materials, s.walls and the domain).
-void parse_particles(const Map& top, SceneSpec& s);
+void parse_particles(const Map& top, SceneSpec& s, PackingChecks checks);
 
 // `analysis:` -> s.mixing (needs the domain and the duration); scene_analysis.cpp.
 void parse_analysis(const Map& top, SceneSpec& s);

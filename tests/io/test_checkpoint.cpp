@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <functional>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -266,23 +268,94 @@ TEST(Checkpoint, PartReadHoldsTheKeptParticlesWithTheirHistory) {
   expect_bitwise_equal(expected, part);
 }
 
-// The checksum covers the whole file on every rank, whatever it keeps.
-TEST(Checkpoint, DamageOutsideTheKeptParticlesIsCaught) {
+// Each block of each array has its own checksum, verified by the reader that
+// reads that block: a rank of a restart reads (and verifies) the blocks that
+// hold its particles, all of particles/position, and the header.
+Checkpoint blocked_checkpoint() {
+  Checkpoint c = sample_checkpoint(100, 2);
+  c.checksum_block_rows = 10;
+  return c;
+}
+
+// Particles [first, last) by their stored positions.
+std::function<bool(const Vec3d&)> rows_of(const Checkpoint& c, std::size_t first, std::size_t last) {
+  std::vector<Vec3d> x(c.particles.position.begin() + std::ptrdiff_t(first),
+                       c.particles.position.begin() + std::ptrdiff_t(last));
+  return [x](const Vec3d& p) {
+    return std::any_of(x.begin(), x.end(), [&p](const Vec3d& q) { return std::memcmp(&p, &q, sizeof(Vec3d)) == 0; });
+  };
+}
+
+void damage_row(const std::string& path, const char* dataset, std::size_t row) {
+  edit_h5(path, [&](hid_t f) {
+    const hid_t d = H5Dopen2(f, dataset, H5P_DEFAULT);
+    std::vector<double> v(300);
+    ASSERT_GE(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0);
+    v[3 * row + 1] += 1;
+    ASSERT_GE(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0);
+    H5Dclose(d);
+  });
+}
+
+std::string refusal_keeping(const std::string& path, const std::function<bool(const Vec3d&)>& keep) {
+  try {
+    read_checkpoint(path, {}, keep);
+  } catch (const CheckpointError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Checkpoint, DamageIsCaughtByTheRankThatReadsIt) {
+  ScratchDir dir;
+  const std::string path = dir.file("checkpoint.h5");
+  const Checkpoint c = blocked_checkpoint();
+  write_checkpoint(path, c);
+  ASSERT_EQ(refusal_keeping(path, rows_of(c, 0, 100)), "");
+  damage_row(path, "particles/velocity", 95);
+  // A rank whose particles lie in blocks 0-4 reads none of the damage.
+  EXPECT_EQ(refusal_keeping(path, rows_of(c, 0, 50)), "");
+  const Checkpoint part = read_checkpoint(path, {}, rows_of(c, 0, 50));
+  ASSERT_EQ(part.particles.size(), 50u);
+  EXPECT_EQ(std::memcmp(part.particles.velocity.data(), c.particles.velocity.data(), 50 * sizeof(Vec3d)), 0);
+  // The rank that holds particle 92 reads block 9 and refuses it, naming the array and the block.
+  const std::string why = refusal_keeping(path, rows_of(c, 92, 93));
+  EXPECT_NE(why.find("checksum mismatch in particles/velocity, particles 90 to 99"), std::string::npos) << why;
+  EXPECT_NE(why.find(path), std::string::npos) << why;
+  EXPECT_NE(refusal(path).find("checksum mismatch in particles/velocity"), std::string::npos) << refusal(path);
+}
+
+TEST(Checkpoint, DamageToPositionsOrHeaderIsCaughtByEveryRank) {
+  ScratchDir dir;
+  const std::string path = dir.file("checkpoint.h5");
+  const Checkpoint c = blocked_checkpoint();
+  write_checkpoint(path, c);
+  damage_row(path, "particles/position", 95);  // every rank reads the positions to find its own
+  const auto none = [](const Vec3d&) { return false; };
+  EXPECT_NE(refusal_keeping(path, none).find("checksum mismatch in particles/position"), std::string::npos);
+  write_checkpoint(path, c);
+  edit_h5(path, [](hid_t f) {
+    const hid_t a = H5Aopen(f, "time", H5P_DEFAULT);
+    const double t = 0.5;
+    ASSERT_GE(H5Awrite(a, H5T_NATIVE_DOUBLE, &t), 0);
+    H5Aclose(a);
+  });
+  EXPECT_NE(refusal_keeping(path, none).find("checksum mismatch: stored"), std::string::npos) << refusal_keeping(path, none);
+}
+
+// Version 2 had one checksum over the whole file: refused, naming the version.
+TEST(Checkpoint, VersionTwoIsRefusedWithTheReason) {
   ScratchDir dir;
   const std::string path = dir.file("checkpoint.h5");
   write_checkpoint(path, sample_checkpoint());
   edit_h5(path, [](hid_t f) {
-    const hid_t d = H5Dopen2(f, "particles/velocity", H5P_DEFAULT);
-    const double v[18] = {};
-    ASSERT_GE(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v), 0);
-    H5Dclose(d);
+    const hid_t a = H5Aopen(f, "format_version", H5P_DEFAULT);
+    const std::int32_t version = 2;
+    ASSERT_GE(H5Awrite(a, H5T_NATIVE_INT32, &version), 0);
+    H5Aclose(a);
   });
-  try {
-    read_checkpoint(path, {}, [](const Vec3d&) { return false; });
-    FAIL() << "a damaged checkpoint was read";
-  } catch (const CheckpointError& e) {
-    EXPECT_NE(std::string(e.what()).find("checksum mismatch"), std::string::npos) << e.what();
-  }
+  const std::string why = refusal(path);
+  EXPECT_NE(why.find("format version 2, but this grainstorm reads version 3"), std::string::npos) << why;
 }
 
 TEST(Checkpoint, WrongSceneIsRefused) {
@@ -331,7 +404,9 @@ TEST(Checkpoint, VersionOneIsRefusedWithTheReason) {
     H5Aclose(a);
   });
   const std::string why = refusal(path);
-  EXPECT_NE(why.find("format version 1, but this grainstorm reads version 2"), std::string::npos) << why;
+  EXPECT_NE(why.find("format version 1, but this grainstorm reads version " + std::to_string(kCheckpointFormatVersion)),
+            std::string::npos)
+      << why;
   EXPECT_NE(why.find("tangential springs as displacements"), std::string::npos) << why;
 }
 
