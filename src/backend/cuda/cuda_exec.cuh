@@ -32,6 +32,13 @@ __global__ void __launch_bounds__(kCudaBlock, MinBlocks) for_each_kernel_bounded
   if (i < n) f(i);
 }
 
+// Sets *flag where pred(i) holds for some i in [0, n) (any thread's store wins).
+template <class P>
+__global__ void any_kernel(Index n, P pred, int* flag) {
+  const Index i = Index(blockIdx.x) * Index(blockDim.x) + Index(threadIdx.x);
+  if (i < n && pred(i)) *flag = 1;
+}
+
 template <class F, class = void>
 struct MinBlocksPerSM {
   static constexpr int value = 0;
@@ -113,10 +120,18 @@ struct CudaExec {
     parallel_for(n_owned, ListCountKernel{cells, near, begin});
     std::size_t bytes = 0;
     GS_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, bytes, begin + 1, begin + 1, n_owned));
-    v.scan_scratch.resize_discarding(bytes);
-    GS_CUDA_CHECK(cub::DeviceScan::InclusiveSum(v.scan_scratch.data(), bytes, begin + 1, begin + 1, n_owned));
-    if (any(n_owned, OffsetsWrapped{begin}))
-      throw std::runtime_error("the Verlet list would hold 2^32 entries or more (32-bit offsets)");
+    constexpr std::size_t kFlagBytes = 256;  // the wrap flag first, CUB's storage aligned after it
+    v.scan_scratch.resize_discarding(kFlagBytes + bytes);
+    int* wrapped = reinterpret_cast<int*>(v.scan_scratch.data());
+    GS_CUDA_CHECK(cub::DeviceScan::InclusiveSum(v.scan_scratch.data() + kFlagBytes, bytes, begin + 1, begin + 1,
+                                                n_owned));
+    // Read back at the build, as the total is: a build waits for the device anyway.
+    GS_CUDA_CHECK(cudaMemset(wrapped, 0, sizeof(int)));
+    any_kernel<<<unsigned((n_owned + kBlock - 1) / kBlock), kBlock>>>(n_owned, OffsetsWrapped{begin}, wrapped);
+    GS_CUDA_CHECK(cudaGetLastError());
+    int wrap = 0;
+    GS_CUDA_CHECK(cudaMemcpy(&wrap, wrapped, sizeof(int), cudaMemcpyDeviceToHost));
+    if (wrap != 0) throw std::runtime_error("the Verlet list would hold 2^32 entries or more (32-bit offsets)");
     ListOffset total = 0;
     GS_CUDA_CHECK(cudaMemcpy(&total, begin + n_owned, sizeof(ListOffset), cudaMemcpyDeviceToHost));
     v.list.resize_discarding(std::size_t(total));  // rewritten whole: no copy of the old
