@@ -6,11 +6,11 @@
 # BUILD and BASE_BUILD are CUDA build directories (src/grainstorm; for the bed
 # also bench/settle_bench). Run from anywhere; the scenes come from this tree.
 #  1. Mixer case a, soft variant (cases/mixer/case_a_soft.yaml, Table 4's
-#     stiffnesses x 0.01): BUILD settles it to step SETTLE_STEPS (24000, t =
-#     1.02 s: the impeller turns from t = 1 s) and checkpoints; each build
-#     then restarts from that checkpoint for MIXER_STEPS steps, ROUNDS times,
-#     alternated. Microseconds per step from the run log's stepping time
-#     (the phases' sum: set-up and output left out), particle-steps/s from it.
+#     stiffnesses x 0.01): each build settles it to step SETTLE_STEPS (24000,
+#     t = 1.02 s: the impeller turns from t = 1 s) and checkpoints; each then
+#     restarts from its own checkpoint (checkpoint formats differ between
+#     commits) for MIXER_STEPS steps, ROUNDS times, alternated. Microseconds per step from the run log's stepping
+#     time (the phases' sum: set-up and output left out), particle-steps/s from it.
 #  2. A 1e5-particle bed: settle_bench (a lattice pressed 0.5 % into overlap,
 #     frictional, fp32 forces, settling and loosening as it runs) with each
 #     build: its wall time per step and particle-steps/s.
@@ -62,32 +62,35 @@ stepping_us() {  # LOG STEPS
     awk -v steps="$2" '{ printf "%.1f", ($1 + $2 + $3 + $4) / steps * 1e6 }'
 }
 
-# 1. Mixer case a (soft).
+# 1. Mixer case a (soft). Each build settles it and restarts from its own
+# checkpoint (a build reads only its own checkpoint format).
 say "== mixer case a (soft), $particles spheres and the impeller mesh, turning"
-(cd "$mixer_dir" && "$build/src/grainstorm" run "$scene" --backend "$backend" --steps "$settle_steps" \
-   --out "$work/settle" --overwrite > "$OUT/mixer_settle.log" 2>&1)
-checkpoint=$(ls "$work"/settle/checkpoint_*.h5 2>/dev/null | tail -1)
-if [[ -z $checkpoint ]]; then
-  say "settling run left no checkpoint (mixer_settle.log):"; tail -5 "$OUT/mixer_settle.log" | tee -a "$summary"
-else
-  end=$((settle_steps + mixer_steps))
-  for round in $(seq 1 "$rounds"); do
-    for label in base new; do
-      b=$build; [[ $label == base ]] && b=$base
-      log=$OUT/mixer_${label}_$round.log
-      rm -rf "$work/mixer_$label"  # a restart writes into a fresh directory (no --overwrite with --restart)
-      (cd "$mixer_dir" && "$b/src/grainstorm" run "$scene" --backend "$backend" --restart "$checkpoint" --steps "$end" \
-         --out "$work/mixer_$label" > "$log" 2>&1)
-      us=$(stepping_us "$log" "$mixer_steps")
-      if [[ -z $us ]]; then
-        say "mixer $label round $round: failed ($log)"; tail -3 "$log" | tee -a "$summary"; continue
-      fi
-      rate=$(awk -v us="$us" -v n="$particles" 'BEGIN { printf "%.3g", n / (us * 1e-6) }')
-      builds=$(sed -n 's/^neighbour lists built \([0-9]*\) times.*/\1/p' "$log")
-      say "mixer $label round $round: $us us/step, $rate particle-steps/s${builds:+, lists built $builds times}"
-    done
+end=$((settle_steps + mixer_steps))
+for label in base new; do
+  b=$build; [[ $label == base ]] && b=$base
+  (cd "$mixer_dir" && "$b/src/grainstorm" run "$scene" --backend "$backend" --steps "$settle_steps" \
+     --out "$work/settle_$label" --overwrite > "$OUT/mixer_settle_$label.log" 2>&1)
+done
+for round in $(seq 1 "$rounds"); do
+  for label in base new; do
+    b=$build; [[ $label == base ]] && b=$base
+    log=$OUT/mixer_${label}_$round.log
+    checkpoint=$(ls "$work/settle_$label"/checkpoint_*.h5 2>/dev/null | tail -1)
+    if [[ -z $checkpoint ]]; then
+      say "mixer $label: the settling run left no checkpoint (mixer_settle_$label.log)"; continue
+    fi
+    rm -rf "$work/mixer_$label"  # a restart writes into a fresh directory (no --overwrite with --restart)
+    (cd "$mixer_dir" && "$b/src/grainstorm" run "$scene" --backend "$backend" --restart "$checkpoint" --steps "$end" \
+       --out "$work/mixer_$label" > "$log" 2>&1)
+    us=$(stepping_us "$log" "$mixer_steps")
+    if [[ -z $us ]]; then
+      say "mixer $label round $round: failed ($log)"; tail -3 "$log" | tee -a "$summary"; continue
+    fi
+    rate=$(awk -v us="$us" -v n="$particles" 'BEGIN { printf "%.3g", n / (us * 1e-6) }')
+    builds=$(sed -n 's/^neighbour lists built \([0-9]*\) times.*/\1/p' "$log")
+    say "mixer $label round $round: $us us/step, $rate particle-steps/s${builds:+, lists built $builds times}"
   done
-fi
+done
 
 # 2. The 1e5-particle bed.
 say "== settling bed, $bed_n spheres, friction, fp32 forces, $bed_steps steps"
@@ -112,13 +115,14 @@ if ! command -v nsys > /dev/null; then
   say "nsys not on PATH: no API counts"
   exit 0
 fi
-if [[ -z ${checkpoint:-} ]]; then
-  say "no mixer checkpoint: no API counts"
+if ! ls "$work"/settle_base/checkpoint_*.h5 "$work"/settle_new/checkpoint_*.h5 > /dev/null 2>&1; then
+  say "no mixer checkpoints: no API counts"
   exit 0
 fi
 say "== CUDA API calls per mixer step (nsys, difference of $profile_steps and $((2 * profile_steps)) steps)"
 api_csv() {  # LABEL BUILD STEPS -> the cuda_api_sum CSV's path
-  local name=$OUT/nsys_${1}_$3
+  local name=$OUT/nsys_${1}_$3 checkpoint
+  checkpoint=$(ls "$work/settle_$1"/checkpoint_*.h5 | tail -1)
   rm -rf "$work/nsys_$1"
   (cd "$mixer_dir" && nsys profile --trace=cuda --sample=none --cpuctxsw=none --force-overwrite=true -o "$name" \
      "$2/src/grainstorm" run "$scene" --backend "$backend" --restart "$checkpoint" --steps $((settle_steps + $3)) \
