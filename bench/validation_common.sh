@@ -5,6 +5,7 @@
 # instead of by time slices.
 #   validation_setup NAME BUILD_DIR OUT   sets: binary, out, python, budget, t_start, backend, size
 #   runs_budget RESERVE_S                 prints the seconds left for the runs, RESERVE_S kept for the analysis
+#   validation_finish RESULTS STATUS      appends the runs' plan and ends to RESULTS, prints it, exits STATUS
 
 validation_log() { echo "[$(date -u +%H:%M:%S) +$(( $(date +%s) - t_start ))s] $case_name: $*" >&2; }
 
@@ -77,4 +78,18 @@ run_tool() {
   local limit=$(( budget - ($(date +%s) - t_start) ))
   (( limit < 20 )) && limit=20
   OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} MPLBACKEND=Agg timeout -k 15 "$limit" "$@"
+}
+
+# The runs' plan and ends (from the progress log) appended to RESULTS, which
+# is then printed; exits with STATUS.
+validation_finish() {  # RESULTS STATUS
+  {
+    echo
+    echo "The runs' sizes and ends (from $case_name's progress log):"
+    echo
+    grep -E ": plan: |: (done|stopped|failed|not started)" "$out/${case_name}_progress.log" | sed 's/^/    /'
+  } >> "$1"
+  validation_log "results in $1"
+  cat "$1"
+  exit "$2"
 }

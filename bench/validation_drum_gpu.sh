@@ -56,12 +56,4 @@ cat "$out/drum_table.txt" >> "$results"
 [[ -f $out/drum_angle_$backend.png ]] || echo "no plots (no matplotlib here): make them from the saved results with
   tools/drum.py --replot OUT/drum_results.json --plots OUT" >> "$results"
 echo "tools/drum.py exit status $status after $(( $(date +%s) - t_start )) s of the ${budget} s budget" >> "$results"
-{
-  echo
-  echo "The runs' sizes and ends (from $case_name's progress log):"
-  echo
-  grep -E ": plan: |: (done|stopped|failed|not started)" "$out/${case_name}_progress.log" | sed 's/^/    /'
-} >> "$results"
-validation_log "results in $results"
-cat "$results"
-exit "$status"
+validation_finish "$results" "$status"

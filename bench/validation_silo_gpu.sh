@@ -80,12 +80,4 @@ cat "$out/silo_table.txt" >> "$results"
   echo
   echo "tools/silo_beverloo.py exit status $status after $(( $(date +%s) - t_start )) s of the ${budget} s budget"
 } >> "$results"
-{
-  echo
-  echo "The runs' sizes and ends (from $case_name's progress log):"
-  echo
-  grep -E ": plan: |: (done|stopped|failed|not started)" "$out/${case_name}_progress.log" | sed 's/^/    /'
-} >> "$results"
-validation_log "results in $results"
-cat "$results"
-exit "$status"
+validation_finish "$results" "$status"
