@@ -113,10 +113,13 @@ struct RoundReference {
 // for the fp64 arithmetic of the test itself) is added to the distance to r,
 // so a move can only be found early, never late. A metre from the origin the
 // addition is 0.36 um, against half a skin of 50 um for 1 mm spheres.
+template <class T>
+GS_HD GS_INLINE double reference_rounding(const Vec3<T>& r) {
+  return 0x1p-23 * (std::fabs(double(r.x)) + std::fabs(double(r.y)) + std::fabs(double(r.z))) +
+         0x1p-126;  // subnormal roundings: below the smallest normal fp32
+}
 GS_HD GS_INLINE double distance_from_reference(const Vec3d& x, const Vec3f& r, const PeriodicBox& box) {
-  const double rounding = 0x1p-23 * (std::fabs(double(r.x)) + std::fabs(double(r.y)) + std::fabs(double(r.z))) +
-                          0x1p-126;  // subnormal roundings: below the smallest normal fp32
-  return norm(box.separation(x, Vec3d(r))) + rounding;
+  return norm(box.separation(x, Vec3d(r))) + reference_rounding(r);
 }
 
 // What a watched kick-drift tells the host about the list (ListWatch): ints
@@ -159,8 +162,12 @@ GS_HD GS_INLINE void store_flag(T& field, T value) {
 //   stale_next where D + m + delta > skin / 2: where no particle raises it,
 //     every particle is still within skin / 2 after step n + 1, unless its
 //     move grew by more than delta in one step;
-//   fast where m + delta > skin / 2 (a list built after this drift is stale
-//     after the next one, for the same reason);
+//   fast where m + delta + 2 e > skin / 2, e the rounding bound of x
+//     (reference_rounding): a list built after this drift would be stale
+//     after the next one, for the same reason, since it would measure from
+//     x rounded to fp32 (up to e away) and add e to every distance. Far
+//     enough from the origin that 2 e alone passes half the skin, the list
+//     is rebuilt every step;
 //   stale_now where D > skin / 2. Read at once in the first step of a run
 //     (which has no verdict of a step before it); read a step late
 //     otherwise, where it tells the host that a list kept on the last step's
@@ -174,7 +181,7 @@ struct ListWatch {
   GS_HD bool active() const { return verdict != nullptr; }
   GS_HD void operator()(Index i, ParticleId id, const Vec3d& x, double move) const {
     const double ahead = move + margin;
-    if (ahead > half_skin) store_flag(verdict->fast, 1);
+    if (ahead + 2 * reference_rounding(x) > half_skin) store_flag(verdict->fast, 1);
     if (!reference) return;
     const double d = distance_from_reference(x, reference[i], box);
     if (d + ahead > half_skin) store_flag(verdict->stale_next, 1);
