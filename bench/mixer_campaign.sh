@@ -19,7 +19,7 @@
 # of the step it stops at and exits with code 3.
 #
 # OUT receives the campaign in the same layout (scenes, impeller.stl, per run
-# the newest checkpoint, the logs; no snapshots), packed as
+# the newest checkpoint unless it has finished, the logs; no snapshots), packed as
 # campaign.tar.gz.partNN of at most 15 MiB (a device command returns at most 8
 # files of 16 MiB), and progress.txt. Put it back into the campaign directory
 # (each run directory in it replaces the one there whole):
@@ -117,6 +117,8 @@ for scene in $scenes; do
   for f in mixing.csv timeseries.csv run.log campaign.log piece.out; do
     [[ -f $work/$name/$f ]] && cp -a "$work/$name/$f" "$pack/$name/"
   done
+  # A finished run needs no checkpoint to go on from.
+  tail -1 "$work/$name/campaign.log" 2>/dev/null | grep -q ' exit 0$' && continue
   last=$(newest_checkpoint "$work/$name")
   [[ -n $last ]] && cp -a "$last" "$pack/$name/"
 done
