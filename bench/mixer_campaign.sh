@@ -29,6 +29,7 @@
 # refused restart) is skipped until RETRY=1.
 set -uo pipefail
 start=$(date +%s)
+(($# == 3)) || { echo "usage: [BUDGET_S=480] [JOBS=1] [BACKEND=cuda] ... bench/mixer_campaign.sh BUILD CAMPAIGN_DIR OUT"; exit 2; }
 build=$1 campaign=$2 out=$3
 budget=${BUDGET_S:-480} jobs=${JOBS:-1} backend=${BACKEND:-cuda} reserve=${RESERVE_S:-40}
 root=$(pwd)
