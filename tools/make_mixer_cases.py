@@ -8,11 +8,14 @@ the mixing analysis after every revolution.
 
     tools/make_mixer_cases.py [--out-dir cases/mixer] [--cases abcd]
         [--revolutions 32] [--froude] [--stiffness-scale 1] [--suffix ""]
+        [--seed N]
 
 --froude uses the paper's Froude-scaled impeller speeds (Table 2, Eq. 12)
 instead of the reference 30 rpm. --stiffness-scale multiplies Table 4's
 stiffnesses (a softer, cheaper variant: the time step grows as its inverse
-square root; see docs/MIXER.md for what it changes).
+square root; see docs/MIXER.md for what it changes). --seed sets the random
+fill's seed (default 1): another seed gives another fill of the same bed, for
+averaging over runs (docs/MIXER.md, "Running the study across sessions").
 """
 import argparse
 import math
@@ -46,7 +49,7 @@ def solid_volume(count, diameter):
     return count * math.pi / 6 * diameter**3
 
 
-def scene(case, revolutions, froude, stiffness_scale, settle, suffix, layers=1):
+def scene(case, revolutions, froude, stiffness_scale, settle, suffix, layers=1, seed=1):
     count, diameter, froude_rpm = CASES[case]
     rpm = froude_rpm if froude else 30.0
     period = 60.0 / rpm
@@ -103,7 +106,7 @@ particles:
       region: {{cylinder: {{base: [0, 0, {fill_bottom:.4f}], axis: [0, 0, 1], radius: {FILL_RADIUS}, length: {fill_height:.4f}}}}}
       count: {count}
       radius: {radius:g}
-      seed: 1
+      seed: {seed}
 
 marking: {{time: {settle:g}, plane: {{point: [0, 0, 0], normal: [1, 0, 0]}}, front: 1, back: 0}}
 
@@ -137,15 +140,16 @@ def main():
     p.add_argument("--settle", type=float, default=1.0, help="seconds of settling before marking [1.0]")
     p.add_argument("--suffix", default="", help="appended to the file names, e.g. _froude")
     p.add_argument("--layers", type=int, default=1, help="mixing samples stacked in height [1]")
+    p.add_argument("--seed", type=int, default=1, help="the random fill's seed, >= 0 [1]")
     a = p.parse_args()
     if not set(a.cases) <= set(CASES) or not a.cases:
         sys.exit(f"make_mixer_cases: --cases must be letters of abcd, got '{a.cases}'")
-    if a.revolutions < 1 or not a.stiffness_scale > 0 or not a.settle > 0 or a.layers < 1:
-        sys.exit("make_mixer_cases: --revolutions >= 1, --stiffness-scale > 0, --settle > 0 and --layers >= 1 are required")
+    if a.revolutions < 1 or not a.stiffness_scale > 0 or not a.settle > 0 or a.layers < 1 or a.seed < 0:
+        sys.exit("make_mixer_cases: --revolutions >= 1, --stiffness-scale > 0, --settle > 0, --layers >= 1 and --seed >= 0 are required")
     for c in a.cases:
         path = os.path.join(a.out_dir, f"case_{c}{a.suffix}.yaml")
         with open(path, "w") as f:
-            f.write(scene(c, a.revolutions, a.froude, a.stiffness_scale, a.settle, a.suffix, a.layers))
+            f.write(scene(c, a.revolutions, a.froude, a.stiffness_scale, a.settle, a.suffix, a.layers, a.seed))
         print(path)
 
 

@@ -1,0 +1,216 @@
+#!/usr/bin/env python3
+"""The mixer campaign's bookkeeping (bench/mixer_campaign.sh, docs/MIXER.md,
+"Running the study across sessions").
+
+    tools/mixer_campaign.py progress CAMPAIGN_DIR
+    tools/mixer_campaign.py restore OUT CAMPAIGN_DIR
+    tools/mixer_campaign.py analyse CAMPAIGN_DIR [--out-dir docs/data/mixer]
+                                   [--prefix campaign] [--plot-dir docs/img]
+
+progress: per run (a scene NAME.yaml with its directory NAME/) the
+revolutions done (the last row of NAME/mixing.csv) against the scene's target,
+and the wall time per revolution (all pieces' wall time in NAME/campaign.log,
+settling included, over the revolutions done).
+
+restore: unpacks what a device command returned (OUT/campaign.tar.gz.partNN)
+into the campaign directory; each run directory in it replaces the one there
+whole, so that no older checkpoint stays behind to be carried again.
+
+analyse: runs named VARIANT_sSEED (as make_mixer_cases.py --suffix ..._sSEED
+writes them) are grouped by VARIANT; per variant and revolution it writes
+OUT_DIR/PREFIX_VARIANT.csv with the mean, the sample standard deviation and
+the min and max over the seeds that reached that revolution of the Lacey
+index and of 1 - RSD, and plots both against revolutions (as the seed's Figs.
+7-10) into PLOT_DIR when matplotlib is present.
+"""
+import argparse
+import csv
+import math
+import os
+import re
+import sys
+
+
+def scene_numbers(path):
+    """duration, mixing start and revolution_period of a make_mixer_cases scene."""
+    text = open(path).read()
+
+    def number(pattern):
+        m = re.search(pattern, text, re.M)
+        if not m:
+            sys.exit(f"mixer_campaign: {path}: no {pattern!r}")
+        return float(m.group(1))
+    return (number(r"^duration:\s*([-+0-9.eE]+)"), number(r"^\s+start:\s*([-+0-9.eE]+)"),
+            number(r"^\s+revolution_period:\s*([-+0-9.eE]+)"))
+
+
+def mixing_rows(path):
+    """rows of a mixing.csv as dicts of floats; [] when absent."""
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        rows = []
+        for line, row in enumerate(csv.DictReader(f), start=2):
+            try:
+                rows.append({k: float(v) for k, v in row.items()})
+            except (TypeError, ValueError):
+                sys.exit(f"mixer_campaign: {path}:{line}: not a row of numbers")
+        return rows
+
+
+def runs(campaign):
+    names = sorted(f[:-5] for f in os.listdir(campaign) if f.endswith(".yaml"))
+    if not names:
+        sys.exit(f"mixer_campaign: no scenes (*.yaml) in {campaign}")
+    return names
+
+
+def progress(campaign):
+    print(f"{'run':32} {'revolutions':>12} {'pieces':>6} {'wall s':>8} {'wall s/rev':>10}  state")
+    for name in runs(campaign):
+        duration, start, period = scene_numbers(os.path.join(campaign, name + ".yaml"))
+        target = round((duration - start) / period)
+        rows = mixing_rows(os.path.join(campaign, name, "mixing.csv"))
+        done = round(rows[-1]["revolutions"]) if rows else 0
+        pieces, wall, state = 0, 0, "not started"
+        log = os.path.join(campaign, name, "campaign.log")
+        if os.path.exists(log):
+            for line in open(log):
+                m = re.search(r"wall_s (\d+) exit (\d+)$", line)
+                if m:
+                    pieces, wall = pieces + 1, wall + int(m.group(1))
+                    code = int(m.group(2))
+                    state = {0: "finished", 3: "stopped, to be continued"}.get(code, f"FAILED (exit {code})")
+        per = f"{wall / done:.1f}" if done else "-"
+        print(f"{name:32} {done:>5} / {target:<4} {pieces:>6} {wall:>8} {per:>10}  {state}")
+
+
+def restore(out, campaign):
+    import glob
+    import io
+    import shutil
+    import tarfile
+    parts = sorted(glob.glob(os.path.join(out, "campaign.tar.gz.part*")))
+    if not parts:
+        sys.exit(f"mixer_campaign: no campaign.tar.gz.part* in {out}")
+    data = b"".join(open(p, "rb").read() for p in parts)
+    with tarfile.open(fileobj=io.BytesIO(data), mode="r:gz") as tar:
+        members = tar.getmembers()
+        for m in members:
+            if m.name.startswith("/") or ".." in m.name.split("/"):
+                sys.exit(f"mixer_campaign: {parts[0]}: unsafe path {m.name!r}")
+        runs_in = {m.name.split("/")[1] for m in members
+                   if m.isdir() and m.name.startswith("./") and m.name.count("/") == 1 and m.name != "./"}
+        os.makedirs(campaign, exist_ok=True)
+        for name in sorted(runs_in):
+            shutil.rmtree(os.path.join(campaign, name), ignore_errors=True)
+        tar.extractall(campaign)
+    print(f"{campaign}: {len(runs_in)} run director{'y' if len(runs_in) == 1 else 'ies'} replaced from {len(parts)} part(s)")
+
+
+def spread(values):
+    mean = sum(values) / len(values)
+    sd = math.sqrt(sum((v - mean) ** 2 for v in values) / (len(values) - 1)) if len(values) > 1 else float("nan")
+    return mean, sd, min(values), max(values)
+
+
+def analyse(campaign, out_dir, prefix, plot_dir):
+    variants = {}
+    for name in runs(campaign):
+        m = re.fullmatch(r"(.+)_s(\d+)", name)
+        variant = m.group(1) if m else name
+        rows = mixing_rows(os.path.join(campaign, name, "mixing.csv"))
+        if rows:
+            variants.setdefault(variant, []).append((name, rows))
+    if not variants:
+        sys.exit(f"mixer_campaign: no run in {campaign} has a mixing.csv yet")
+    os.makedirs(out_dir, exist_ok=True)
+    tables = {}
+    for variant, members in sorted(variants.items()):
+        by_rev = {}
+        for _, rows in members:
+            for r in rows:
+                by_rev.setdefault(round(r["revolutions"]), []).append(r)
+        path = os.path.join(out_dir, f"{prefix}_{variant}.csv")
+        table = []
+        with open(path, "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(["revolutions", "runs", "lacey_mean", "lacey_sd", "lacey_min", "lacey_max",
+                        "one_minus_rsd_mean", "one_minus_rsd_sd", "one_minus_rsd_min", "one_minus_rsd_max",
+                        "concentration_mean"])
+            for rev in sorted(by_rev):
+                rs = by_rev[rev]
+                lacey = spread([r["lacey"] for r in rs])
+                orsd = spread([r["one_minus_rsd"] for r in rs])
+                conc = sum(r["concentration"] for r in rs) / len(rs)
+                w.writerow([rev, len(rs)] + [f"{v:.6g}" for v in lacey + orsd + (conc,)])
+                table.append((rev, len(rs), lacey, orsd))
+        tables[variant] = table
+        print(f"{path}: {len(members)} run(s) ({', '.join(n for n, _ in members)}), revolutions 0-{max(by_rev)}")
+    if plot_dir:
+        plot(tables, plot_dir, prefix)
+
+
+def plot(tables, plot_dir, prefix):
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("matplotlib not found: no plots")
+        return
+    os.makedirs(plot_dir, exist_ok=True)
+    for column, label, stem in ((2, "Lacey index M", "lacey"), (3, "1 - RSD", "one_minus_rsd")):
+        fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+        for ax, log in zip(axes, (False, True)):
+            for variant, table in tables.items():
+                rows = [t for t in table if not log or t[0] > 0]
+                revs = [t[0] for t in rows]
+                mean = [t[column][0] for t in rows]
+                lo = [t[column][2] for t in rows]
+                hi = [t[column][3] for t in rows]
+                runs_max = max(t[1] for t in table)
+                line, = ax.plot(revs, mean, marker="o", ms=3, label=f"{variant} (mean of {runs_max})")
+                if runs_max > 1:
+                    ax.fill_between(revs, lo, hi, color=line.get_color(), alpha=0.2, lw=0)
+            if log:
+                ax.set_xscale("log")
+            ax.set_xlabel("revolutions" + (" (log)" if log else ""))
+            ax.set_ylabel(label)
+            ax.grid(alpha=0.3)
+        axes[0].legend(fontsize=8)
+        fig.suptitle(f"{label}: mean over seeds, band from min to max")
+        fig.tight_layout()
+        path = os.path.join(plot_dir, f"{prefix}_{stem}.png")
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+        print(path)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = p.add_subparsers(dest="command", required=True)
+    pr = sub.add_parser("progress")
+    pr.add_argument("campaign")
+    re_ = sub.add_parser("restore")
+    re_.add_argument("out")
+    re_.add_argument("campaign_dir")
+    an = sub.add_parser("analyse")
+    an.add_argument("campaign")
+    an.add_argument("--out-dir", default="docs/data/mixer")
+    an.add_argument("--prefix", default="campaign")
+    an.add_argument("--plot-dir", default="docs/img", help="'' for no plots [docs/img]")
+    a = p.parse_args()
+    if a.command == "restore":
+        restore(a.out, a.campaign_dir)
+        return
+    if not os.path.isdir(a.campaign):
+        sys.exit(f"mixer_campaign: {a.campaign} is not a directory")
+    if a.command == "progress":
+        progress(a.campaign)
+    else:
+        analyse(a.campaign, a.out_dir, a.prefix, a.plot_dir)
+
+
+if __name__ == "__main__":
+    main()
