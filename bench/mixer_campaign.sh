@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Advances a campaign of mixer runs by one device command: each unfinished run
+# Advances a campaign of mixer runs by one job on a GPU machine: each unfinished run
 # continues from its newest checkpoint, the lot stops before BUDGET_S seconds
 # of wall time (counted from this script's start, a build included), and what
-# the next command needs comes back under OUT. docs/MIXER.md, "Running the
+# the next job needs comes back under OUT. docs/MIXER.md, "Running the
 # study across sessions", has the whole procedure.
 #
 #   [BUDGET_S=480] [JOBS=1] [BACKEND=cuda] [RESERVE_S=40] [MIN_PIECE_S=60] [PACK=1] [RETRY=0]
@@ -20,7 +20,7 @@
 #
 # OUT receives the campaign in the same layout (scenes, impeller.stl, per run
 # the newest checkpoint unless it has finished, the logs; no snapshots), packed as
-# campaign.tar.gz.partNN of at most 15 MiB (a device command returns at most 8
+# campaign.tar.gz.partNN of at most 15 MiB (a job system may return at most 8
 # files of 16 MiB), and progress.txt. Put it back into the campaign directory
 # (each run directory in it replaces the one there whole):
 #   tools/mixer_campaign.py restore OUT CAMPAIGN_DIR
@@ -99,14 +99,14 @@ for scene in $scenes; do
   while ((running >= jobs)); do wait -n; running=$((running - 1)); done
   # A piece shorter than MIN_PIECE_S would spend much of it starting up.
   if (($(date +%s) + ${MIN_PIECE_S:-60} > deadline)); then
-    echo "$name and later runs: left for the next command (less than ${MIN_PIECE_S:-60} s left)"; break
+    echo "$name and later runs: left for the next job (less than ${MIN_PIECE_S:-60} s left)"; break
   fi
   piece "$name" "$deadline" &
   running=$((running + 1))
 done
 wait
 
-# What the next command needs: scenes, the mesh, per run the newest
+# What the next job needs: scenes, the mesh, per run the newest
 # checkpoint and the logs. Snapshots and older checkpoints stay behind.
 pack=$work.pack
 rm -rf "$pack" && mkdir -p "$pack"
@@ -128,7 +128,7 @@ if [[ ${PACK:-1} == 1 ]]; then
   tar czf - -C "$pack" . | split -b 15M -d - "$out/campaign.tar.gz.part"
   size=$(cat "$out"/campaign.tar.gz.part* | wc -c)
   echo "packed: $(ls "$out"/campaign.tar.gz.part* | wc -l) part(s), $((size / 1048576)) MiB"
-  ((size > 60 * 1048576)) && echo "WARNING: more than 60 MiB: a device command returns at most 64 MiB; split the campaign"
+  ((size > 60 * 1048576)) && echo "WARNING: more than 60 MiB: more than a short job may return (64 MiB); split the campaign"
 else
   cp -a "$pack"/. "$out"/
 fi

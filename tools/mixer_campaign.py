@@ -12,7 +12,7 @@ revolutions done (the last row of NAME/mixing.csv) against the scene's target,
 and the wall time per revolution (all pieces' wall time in NAME/campaign.log,
 settling included, over the revolutions done).
 
-restore: unpacks what a device command returned (OUT/campaign.tar.gz.partNN)
+restore: unpacks what a job returned (OUT/campaign.tar.gz.partNN)
 into the campaign directory; each run directory in it replaces the one there
 whole, so that no older checkpoint stays behind to be carried again.
 
