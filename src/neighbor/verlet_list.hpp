@@ -19,7 +19,7 @@
 // costs more than reading a short list of 4-byte indices (six entries per
 // sphere in a touching lattice at skin 0.1 diameters), rebuilt only when a
 // particle has moved half the skin. Its memory: 4 bytes per entry, 4 per
-// particle of offsets and 12 of reference position (fp32: see MovedBeyond;
+// particle of offsets and 12 of reference position (fp32: see distance_from_reference;
 // docs/PERFORMANCE.md).
 // The GPU builds it in two passes over the cells (count; a scan turns the
 // counts into offsets; fill and sort each particle's entries in place:
