@@ -5,7 +5,7 @@
 # the next job needs comes back under OUT. docs/MIXER.md, "Running the
 # study across sessions", has the whole procedure.
 #
-#   [BUDGET_S=480] [JOBS=1] [BACKEND=cuda] [RESERVE_S=40] [MIN_PIECE_S=60] [PACK=1] [RETRY=0]
+#   [BUDGET_S=480] [JOBS=1] [MPS=0] [BACKEND=cuda] [RESERVE_S=40] [MIN_PIECE_S=60] [PACK=1] [RETRY=0]
 #     bench/mixer_campaign.sh BUILD CAMPAIGN_DIR OUT
 #
 # CAMPAIGN_DIR holds the runs' scenes (NAME.yaml, written by
@@ -13,8 +13,9 @@
 # that has started a directory NAME/ with its newest checkpoint, mixing.csv,
 # timeseries.csv, run.log and campaign.log (one line per piece). It is read,
 # never written: the runs go on in a copy under WORK (default a new temporary
-# directory). Runs are taken in name order, JOBS at a time (one process per
-# GPU pays best: processes sharing a GPU take turns); a run's piece is
+# directory). Runs are taken in name order, JOBS at a time; with MPS=1 (CUDA)
+# a CUDA MPS daemon of the job's own lets the JOBS processes run their kernels
+# at once (bench/mps.sh), without it they take turns on the GPU. A run's piece is
 # stopped by SIGTERM at the budget, on which grainstorm writes a checkpoint
 # of the step it stops at and exits with code 3.
 #
@@ -63,6 +64,10 @@ work=${WORK:-$(mktemp -d /tmp/mixer_campaign.XXXXXX)}
 mkdir -p "$work"
 cp -a "$campaign"/. "$work"/
 work=$(realpath "$work")
+if [[ ${MPS:-0} == 1 && $backend == cuda ]]; then
+  source "$root/bench/mps.sh"
+  start_mps "$work.mps" && echo "MPS daemon started" || echo "MPS daemon did not start: the runs take turns on the GPU"
+fi
 
 newest_checkpoint() {  # the newest checkpoint of run dir $1 that reads whole
   local f

@@ -7,6 +7,8 @@
 #   runs_budget RESERVE_S                 prints the seconds left for the runs, RESERVE_S kept for the analysis
 #   validation_finish RESULTS STATUS      appends the runs' plan and ends to RESULTS, prints it, exits STATUS
 
+source "$(dirname "${BASH_SOURCE[0]}")/mps.sh"
+
 validation_log() { echo "[$(date -u +%H:%M:%S) +$(( $(date +%s) - t_start ))s] $case_name: $*" >&2; }
 
 validation_setup() {
@@ -54,11 +56,7 @@ validation_setup() {
     echo "budget: ${budget} s, backend $backend, size $size${MPS:+, MPS=$MPS}"
   } > "$out/env.txt"
   if [[ ${MPS:-0} == 1 && $backend == cuda ]]; then
-    # A daemon of our own (its own pipe directory), quit on exit.
-    export CUDA_MPS_PIPE_DIRECTORY=$out/mps_pipe CUDA_MPS_LOG_DIRECTORY=$out/mps_log
-    mkdir -p "$CUDA_MPS_PIPE_DIRECTORY" "$CUDA_MPS_LOG_DIRECTORY"
-    if nvidia-cuda-mps-control -d; then
-      trap 'echo quit | nvidia-cuda-mps-control' EXIT
+    if start_mps "$out"; then
       validation_log "MPS daemon started"
     else
       validation_log "MPS daemon did not start: runs share the GPU by time slices"
