@@ -6,6 +6,7 @@
 # study across sessions", has the whole procedure.
 #
 #   [BUDGET_S=480] [JOBS=1] [MPS=0] [BACKEND=cuda] [RESERVE_S=40] [MIN_PIECE_S=60] [PACK=1] [RETRY=0]
+#   [KEEP_REVOLUTIONS="0 1 5 10 32"] [KEEP_RUNS='*_s1']
 #     bench/mixer_campaign.sh BUILD CAMPAIGN_DIR OUT
 #
 # CAMPAIGN_DIR holds the runs' scenes (NAME.yaml, written by
@@ -20,7 +21,9 @@
 # of the step it stops at and exits with code 3.
 #
 # OUT receives the campaign in the same layout (scenes, impeller.stl, per run
-# the newest checkpoint unless it has finished, the logs; no snapshots), packed as
+# the newest checkpoint unless it has finished, the logs; no snapshots except,
+# for the runs whose names match the glob KEEP_RUNS, those nearest the
+# revolutions of KEEP_REVOLUTIONS, for top views), packed as
 # campaign.tar.gz.partNN of at most 15 MiB (a job system may return at most 8
 # files of 16 MiB), and progress.txt. Put it back into the campaign directory
 # (each run directory in it replaces the one there whole):
@@ -112,7 +115,8 @@ done
 wait
 
 # What the next job needs: scenes, the mesh, per run the newest
-# checkpoint and the logs. Snapshots and older checkpoints stay behind.
+# checkpoint, the logs and the snapshots KEEP_REVOLUTIONS asks for; older
+# checkpoints and other snapshots stay behind.
 pack=$work.pack
 rm -rf "$pack" && mkdir -p "$pack"
 cp -a "$work"/*.yaml "$work"/impeller.stl "$pack"/
@@ -123,6 +127,11 @@ for scene in $scenes; do
   for f in mixing.csv timeseries.csv run.log campaign.log piece.out; do
     [[ -f $work/$name/$f ]] && cp -a "$work/$name/$f" "$pack/$name/"
   done
+  # Snapshots for the top views (tools/mixer_campaign.py snapshots), kept from job to job.
+  if [[ -n ${KEEP_REVOLUTIONS:-} && $name == ${KEEP_RUNS:-*_s1} ]]; then
+    python3 tools/mixer_campaign.py snapshots "$work/$name" "$work/$scene" $KEEP_REVOLUTIONS 2>/dev/null |
+      while read -r f; do cp -a "$f" "$pack/$name/"; done
+  fi
   # A finished run needs no checkpoint to go on from.
   tail -1 "$work/$name/campaign.log" 2>/dev/null | grep -q ' exit 0$' && continue
   last=$(newest_checkpoint "$work/$name")

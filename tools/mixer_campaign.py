@@ -6,6 +6,7 @@
     tools/mixer_campaign.py restore OUT CAMPAIGN_DIR
     tools/mixer_campaign.py analyse CAMPAIGN_DIR [--out-dir docs/data/mixer]
                                    [--prefix campaign] [--plot-dir docs/img]
+    tools/mixer_campaign.py snapshots RUN_DIR SCENE REVOLUTION...
 
 progress: per run (a scene NAME.yaml with its directory NAME/) the
 revolutions done (the last row of NAME/mixing.csv) against the scene's target,
@@ -20,8 +21,16 @@ analyse: runs named VARIANT_sSEED (as make_mixer_cases.py --suffix ..._sSEED
 writes them) are grouped by VARIANT; per variant and revolution it writes
 OUT_DIR/PREFIX_VARIANT.csv with the mean, the sample standard deviation and
 the min and max over the seeds that reached that revolution of the Lacey
-index and of 1 - RSD, and plots both against revolutions (as the seed's Figs.
-7-10) into PLOT_DIR when matplotlib is present.
+index and of 1 - RSD, and the impeller's torque about its axis (mesh0_tz of
+NAME/timeseries.csv, the load on the first mesh) averaged over the revolution
+that ends there (mean and standard deviation over the seeds), and plots Lacey
+and 1 - RSD against revolutions (as the seed's Figs. 7-10) into PLOT_DIR when
+matplotlib is present.
+
+snapshots: the snapshot files (particles_STEP.h5, with meshes_STEP.h5 where
+written) of a run directory nearest to each given revolution, within a
+quarter revolution, one path per line; bench/mixer_campaign.sh keeps them
+(KEEP_REVOLUTIONS) for the top views of docs/MIXER.md.
 """
 import argparse
 import csv
@@ -56,6 +65,55 @@ def mixing_rows(path):
             except (TypeError, ValueError):
                 sys.exit(f"mixer_campaign: {path}:{line}: not a row of numbers")
         return rows
+
+
+def time_step(run_dir):
+    """dt of a run from its run.log's first line ("dt = 4.26e-05 s")."""
+    path = os.path.join(run_dir, "run.log")
+    m = re.search(r"dt = ([-+0-9.eE]+) s", open(path).read()) if os.path.exists(path) else None
+    if not m:
+        sys.exit(f"mixer_campaign: {path}: no time step (\"dt = ... s\")")
+    return float(m.group(1))
+
+
+def revolution_torques(run_dir, start, period):
+    """{revolution r: mean of mesh0_tz over (start + (r-1) period, start + r period]} from timeseries.csv."""
+    path = os.path.join(run_dir, "timeseries.csv")
+    if not os.path.exists(path):
+        return {}
+    sums = {}
+    with open(path) as f:
+        for row in csv.DictReader(f):
+            if "mesh0_tz" not in row:
+                return {}
+            t = float(row["time"])
+            if t <= start:
+                continue
+            r = math.ceil((t - start) / period - 1e-9)  # a sample at the revolution's end belongs to it
+            total, n = sums.get(r, (0.0, 0))
+            sums[r] = (total + float(row["mesh0_tz"]), n + 1)
+    return {r: total / n for r, (total, n) in sums.items()}
+
+
+def snapshots(run_dir, scene, revolutions):
+    _, start, period = scene_numbers(scene)
+    dt = time_step(run_dir)
+    found = {}
+    for f in os.listdir(run_dir):
+        m = re.fullmatch(r"particles_(\d+)\.h5", f)
+        if m:
+            found[int(m.group(1))] = f
+    for rev in revolutions:
+        near = [(abs((step * dt - start) / period - rev), step) for step in found]
+        near = [n for n in near if n[0] <= 0.25]
+        if not near:
+            print(f"mixer_campaign: {run_dir}: no snapshot within a quarter revolution of {rev}", file=sys.stderr)
+            continue
+        step = min(near)[1]
+        print(os.path.join(run_dir, found[step]))
+        meshes = os.path.join(run_dir, found[step].replace("particles_", "meshes_"))
+        if os.path.exists(meshes):
+            print(meshes)
 
 
 def runs(campaign):
@@ -121,6 +179,10 @@ def analyse(campaign, out_dir, prefix, plot_dir):
         variant = m.group(1) if m else name
         rows = mixing_rows(os.path.join(campaign, name, "mixing.csv"))
         if rows:
+            _, start, period = scene_numbers(os.path.join(campaign, name + ".yaml"))
+            torque = revolution_torques(os.path.join(campaign, name), start, period)
+            for r in rows:
+                r["torque"] = torque.get(round(r["revolutions"]), float("nan"))
             variants.setdefault(variant, []).append((name, rows))
     if not variants:
         sys.exit(f"mixer_campaign: no run in {campaign} has a mixing.csv yet")
@@ -137,13 +199,15 @@ def analyse(campaign, out_dir, prefix, plot_dir):
             w = csv.writer(f)
             w.writerow(["revolutions", "runs", "lacey_mean", "lacey_sd", "lacey_min", "lacey_max",
                         "one_minus_rsd_mean", "one_minus_rsd_sd", "one_minus_rsd_min", "one_minus_rsd_max",
-                        "concentration_mean"])
+                        "concentration_mean", "torque_mean", "torque_sd"])
             for rev in sorted(by_rev):
                 rs = by_rev[rev]
                 lacey = spread([r["lacey"] for r in rs])
                 orsd = spread([r["one_minus_rsd"] for r in rs])
                 conc = sum(r["concentration"] for r in rs) / len(rs)
-                w.writerow([rev, len(rs)] + [f"{v:.6g}" for v in lacey + orsd + (conc,)])
+                torques = [r["torque"] for r in rs if not math.isnan(r["torque"])]
+                torque = spread(torques)[:2] if torques else (float("nan"), float("nan"))
+                w.writerow([rev, len(rs)] + [f"{v:.6g}" for v in lacey + orsd + (conc,) + torque])
                 table.append((rev, len(rs), lacey, orsd))
         tables[variant] = table
         print(f"{path}: {len(members)} run(s) ({', '.join(n for n, _ in members)}), revolutions 0-{max(by_rev)}")
@@ -200,9 +264,16 @@ def main():
     an.add_argument("--out-dir", default="docs/data/mixer")
     an.add_argument("--prefix", default="campaign")
     an.add_argument("--plot-dir", default="docs/img", help="'' for no plots [docs/img]")
+    sn = sub.add_parser("snapshots")
+    sn.add_argument("run_dir")
+    sn.add_argument("scene")
+    sn.add_argument("revolutions", nargs="+", type=float)
     a = p.parse_args()
     if a.command == "restore":
         restore(a.out, a.campaign_dir)
+        return
+    if a.command == "snapshots":
+        snapshots(a.run_dir, a.scene, a.revolutions)
         return
     if not os.path.isdir(a.campaign):
         sys.exit(f"mixer_campaign: {a.campaign} is not a directory")
