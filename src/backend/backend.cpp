@@ -4,6 +4,7 @@
 #include <sched.h>
 #include <omp.h>
 
+#include <cstdlib>
 #include <stdexcept>
 
 #include "backend/check.hpp"
@@ -35,12 +36,31 @@ bool cuda_device_available() {
 #endif
 }
 
+// How the host thread waits for the device, from GRAINSTORM_GPU_WAIT; 0 (the
+// CUDA runtime's choice: spinning, while the process has fewer contexts than
+// the machine has cores) where it is unset.
+unsigned gpu_wait_flags() {
+  const char* v = std::getenv("GRAINSTORM_GPU_WAIT");
+  if (!v) return 0;
+  const std::string mode(v);
+#ifdef GS_HAVE_CUDA
+  if (mode == "spin") return cudaDeviceScheduleSpin;
+  if (mode == "yield") return cudaDeviceScheduleYield;
+  if (mode == "block") return cudaDeviceScheduleBlockingSync;
+#else
+  if (mode == "spin" || mode == "yield" || mode == "block") return 0;
+#endif
+  throw std::invalid_argument("GRAINSTORM_GPU_WAIT must be spin, yield or block, got '" + mode + "'");
+}
+
 bool select_cuda_device(int local_rank) {
 #ifdef GS_HAVE_CUDA
+  const unsigned wait = gpu_wait_flags();
   int count = 0;
   GS_CUDA_CHECK(cudaGetDeviceCount(&count));
   if (count == 0) throw std::runtime_error("no CUDA device to bind local rank " + std::to_string(local_rank) + " to");
   GS_CUDA_CHECK(cudaSetDevice(local_rank % count));
+  if (wait != 0) GS_CUDA_CHECK(cudaSetDeviceFlags(wait));
   return local_rank < count;
 #else
   (void)local_rank;

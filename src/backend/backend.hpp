@@ -12,8 +12,12 @@ bool cuda_backend_built();     // compiled with the CUDA backend
 bool cuda_device_available();  // built with CUDA and a device is present
 Backend default_backend();     // cuda when a device is available, else cpu
 // Binds this process to device local_rank mod the device count; returns
-// true when that leaves it a device of its own (local_rank < count).
+// true when that leaves it a device of its own (local_rank < count). With
+// GRAINSTORM_GPU_WAIT=spin|yield|block the host thread waits for the device
+// that way (many processes sharing one GPU and fewer cores: block); an
+// unknown value throws std::invalid_argument naming the variable.
 bool select_cuda_device(int local_rank);
+unsigned gpu_wait_flags();  // GRAINSTORM_GPU_WAIT as CUDA device flags; 0 where unset
 
 // The host threads this process runs its OpenMP loops on (OMP_NUM_THREADS or
 // the default), and the cores its CPU affinity lets them use. mpirun binds
