@@ -3,14 +3,18 @@
 # line per scene and rank count, "scene ranks steps digest". Two builds that
 # print the same lines compute the same bits (a refactor must not change them).
 #
-#   tools/digest_cases.sh BUILD_DIR [MAX_RANKS=4] [STEPS=200] > digests.txt
+#   [DIGEST_BUILD=DIR] tools/digest_cases.sh BUILD_DIR [MAX_RANKS=4] [STEPS=200] > digests.txt
 #
+# DIGEST_BUILD: the build whose `grainstorm info` digests the checkpoints
+# (default BUILD_DIR): the runs of one build digested as another computes
+# digests, when the digest itself changed between them.
 # Each scene runs from a copy beside it (relative paths keep working) whose
 # output section asks for one checkpoint at the end; `grainstorm info` prints
 # its state digest (src/io/state_digest.hpp). Mixer case d (7.7e6 spheres) is
 # left out: it does not fit a CI machine's time.
 set -euo pipefail
 build=$(cd "$1" && pwd)
+digest_build=$(cd "${DIGEST_BUILD:-$1}" && pwd)
 max_ranks=${2:-4}
 steps=${3:-200}
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -38,7 +42,7 @@ PY
     mpiexec --oversubscribe --allow-run-as-root -n "$ranks" "$build/src/grainstorm" run "$copy" --backend cpu \
       --steps "$steps" > "$work/log" 2>&1 || { echo "$scene $ranks: run failed" >&2; tail -5 "$work/log" >&2; exit 1; }
     checkpoint=$(ls "$out"/checkpoint_*.h5 | tail -1)
-    digest=$("$build/src/grainstorm" info "$checkpoint" | sed -n 's/^state digest: *\(0x[0-9a-f]*\).*/\1/p')
+    digest=$("$digest_build/src/grainstorm" info "$checkpoint" | sed -n 's/^state digest: *\(0x[0-9a-f]*\).*/\1/p')
     echo "$scene $ranks $steps $digest"
   done
 done

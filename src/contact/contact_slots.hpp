@@ -1,8 +1,11 @@
 #pragma once
-// Per-particle contact slots: the spring history of each contact of particle i
-// is kept by i itself, keyed by the partner's global id, so no two threads
-// ever write the same slot and no atomics are needed.
-// (The layout of the table is core/history_layout.hpp.)
+// Per-particle contact slots for the contacts with walls and mesh features
+// (`surface_slots` of them): the spring history of each such contact of
+// particle i is kept by i itself, keyed by the partner's id (kWallPartnerBase
+// + w, mesh_partner_id), so no two threads ever write the same slot and no
+// atomics are needed. Particle pairs keep theirs per Verlet list entry
+// instead (contact/pair_springs.hpp), where no search and no partner id is
+// needed. (The layout of the table is core/history_layout.hpp.)
 #include "contact/contact_law.hpp"
 #include "core/fault.hpp"
 #include "core/history_layout.hpp"

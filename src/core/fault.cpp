@@ -10,6 +10,8 @@ const char* fault_cause(int code) {
                                "unstable contact)";
     case kFaultNotFinite: return "position or velocity became NaN or Inf (numerical instability)";
     case kFaultSlotsExhausted: return "more simultaneous contacts than contact_slots (raise contact_slots)";
+    case kFaultSurfaceSlotsExhausted: return "more simultaneous contacts with walls and mesh features than "
+                                             "surface_slots (raise surface_slots)";
     case kFaultListOutrun: return "the particle moved more than half the Verlet skin from where the list saw it in "
                                   "a step the list was kept for: its move grew by more than the list's margin (a "
                                   "tenth of the skin) in one step (time step too large or unstable contact)";

@@ -13,6 +13,7 @@ enum FaultCode : int {
   kFaultNotFinite = 3,        // NaN or Inf in position or velocity
   kFaultSlotsExhausted = 4,   // more simultaneous contacts than contact_slots
   kFaultListOutrun = 5,       // moved past a Verlet list kept on a verdict read a step late (neighbor/verlet_list.hpp)
+  kFaultSurfaceSlotsExhausted = 6,  // more simultaneous wall and mesh contacts than surface_slots
 };
 
 struct Fault {

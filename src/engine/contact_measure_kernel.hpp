@@ -35,27 +35,29 @@ struct ContactMeasureKernel {
     Index i;
     Vec3d xi;
     ContactMeasure* m;
-    GS_HD void operator()(Index j) const {
-      if (j != i) kernel->add_particle(i, j, xi, *m);
+    GS_HD void operator()(Index j, ListOffset entry) const {
+      if (j != i) kernel->add_particle(i, j, entry, xi, *m);
     }
   };
 
-  // The springs the force computation stored for this contact (none: zero).
+  // The springs the force computation stored for this surface contact (none: zero).
   GS_HD ContactState<Real> stored_state(Index i, ParticleId partner) const {
     ContactState<Real> state;
     if constexpr (Forces::kHistory) {
-      const int slot = forces.history.find(i, partner);
-      if (slot >= 0) state = forces.history.load(i, slot);
+      const int slot = forces.surface_history.find(i, partner);
+      if (slot >= 0) state = forces.surface_history.load(i, slot);
     }
     return state;
   }
 
   // Each particle of a contact holds half its branch vector x_i - x_j (to
-  // the nearest image of j on the axes that wrap).
-  GS_HD void add_particle(Index i, Index j, const Vec3d& xi, ContactMeasure& m) const {
+  // the nearest image of j on the axes that wrap). The pair's springs: its
+  // list entry's.
+  GS_HD void add_particle(Index i, Index j, ListOffset entry, const Vec3d& xi, ContactMeasure& m) const {
     ContactKinematics<Real> k;
     if (!forces.particle_kinematics(i, j, xi, k)) return;
-    ContactState<Real> state = stored_state(i, forces.id[j]);
+    ContactState<Real> state;
+    if constexpr (Forces::kHistory) state = forces.pair_history.load(entry);
     const ContactLoad<Real> load = contact_load<Real, Model, Effects>(
         forces.pairs(forces.material[i], forces.material[j]), k, state, Real(0));
     m.stress_moment += outer(forces.box.separation(xi, forces.position[j]) * 0.5, Vec3d(load.force));

@@ -103,7 +103,7 @@ class ForceComputer final : public ForceComputation {
     return {s.id.data(), s.material.data(), s.radius.data(), s.mass.data(), s.position.data(), s.velocity.data(),
             s.angular_velocity.data(), candidates, neighbours_.box(),
             PairTable<Real, Model>{pairs_.data(), n_materials_}, walls_.data(), wall_screens_.data(), n_walls_,
-            meshes_.view(), meshes_.loads(), slot_table(),
+            meshes_.view(), meshes_.loads(), st_.pairs.current.template view<kKept>(), slot_table(), st_.row_width,
             st_.forces.force.data(), kTorque ? st_.forces.torque.data() : nullptr, Real(dt), st_.fault.data(), step};
   }
   SlotTable<Real, kKept> slot_table() {

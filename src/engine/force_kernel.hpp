@@ -8,6 +8,7 @@
 // contacts in ascending triangle order of the particle's mesh bin.
 #include "contact/contact_models.hpp"
 #include "contact/contact_slots.hpp"
+#include "contact/pair_springs.hpp"
 #include "neighbor/cell_list.hpp"
 #include "neighbor/verlet_list.hpp"
 #include "walls/sphere_triangle.hpp"
@@ -58,7 +59,11 @@ struct ForceKernel {
   int n_walls;
   MeshView meshes;          // n_triangles == 0: the scene has no mesh, the loop is skipped
   MeshLoad* mesh_load;      // per owned particle x mesh: its load on the mesh; null without meshes
-  SlotTable<Real, history_fields_kept<Model>(Effects)> history;
+  // Contact history: of particle pairs, one entry per Verlet list entry; of
+  // walls and mesh features, a few slots per particle keyed by partner id.
+  PairSprings<Real, history_fields_kept<Model>(Effects)> pair_history;
+  SlotTable<Real, history_fields_kept<Model>(Effects)> surface_history;
+  int contact_slots;  // the most contacts a particle's row holds (messages, checkpoints)
   // Outputs
   Vec3<Real>* force;
   Vec3<Real>* torque;  // null when no effect makes torques
@@ -74,7 +79,7 @@ struct ForceKernel {
   // and so to three blocks: a quarter of the warps, and 17 % of the
   // throughput of a bed without meshes (docs/PERFORMANCE.md).
   static constexpr int kMinBlocksPerSM = 4;
-  static constexpr int kAnySlot = -2;  // apply(): find the contact's slot, or claim one
+  static constexpr int kAnySlot = -2;  // apply(): find the contact's surface slot, or claim one
   // Mesh contacts without a slot wait until the others have taken theirs (at
   // most this many per particle; more claim a slot at once).
   static constexpr int kWaitingMeshContacts = 4;
@@ -82,15 +87,20 @@ struct ForceKernel {
   GS_HD GS_INLINE void operator()(Index i) const {
     ContactLoad<Real> total;
     unsigned touched = 0;
+    int pairs_touching = 0;
     const Vec3d xi = position[i];
-    ParticleVisitor visit{this, i, xi, &total, &touched};
+    ParticleVisitor visit{this, i, xi, &total, &pairs_touching};
     candidates.for_each(i, xi, visit);
     const double ri = radius[i];
     for (int w = 0; w < n_walls; ++w)
       if (wall_may_touch(wall_screens[w], xi, ri)) add_wall_contact(i, w, xi, total, touched);
     // One uniform branch per particle when the scene has no mesh (docs/MESHES.md, cost).
     if (meshes.n_triangles > 0) add_mesh_contacts(i, xi, total, touched);
-    if constexpr (kHistory) history.release_untouched(i, touched);
+    if constexpr (kHistory) {
+      surface_history.release_untouched(i, touched);
+      // A row of contact_slots must hold them all when the particle migrates or is checkpointed.
+      if (pairs_touching + bit_count(touched) > contact_slots) report_fault(fault, kFaultSlotsExhausted, id[i], step);
+    }
     force[i] = total.force;
     if constexpr (kTorque) torque[i] = total.torque;
   }
@@ -139,17 +149,31 @@ struct ForceKernel {
   }
 
  private:
-  // Visitor of the candidate source: one possible partner j of particle i.
+  // Visitor of the candidate source: one possible partner j of particle i,
+  // at list entry k.
   struct ParticleVisitor {
     const ForceKernel* kernel;
     Index i;
     Vec3d xi;
     ContactLoad<Real>* total;
-    unsigned* touched;
+    int* pairs_touching;
+    GS_HD GS_INLINE void operator()(Index j, ListOffset k) const {
+      if (j != i) *pairs_touching += kernel->add_particle_contact(i, j, k, xi, *total);
+    }
+    // Candidates without list entries (cells) have nowhere to keep springs.
     GS_HD GS_INLINE void operator()(Index j) const {
-      if (j != i) kernel->add_particle_contact(i, j, xi, *total, *touched);
+      static_assert(!kHistory, "contact history needs the Verlet list's entries");
+      if (j != i) kernel->add_particle_contact(i, j, ListOffset(0), xi, *total);
     }
   };
+
+  GS_HD GS_INLINE static int bit_count(unsigned v) {
+#if defined(__CUDA_ARCH__)
+    return __popc(v);
+#else
+    return __builtin_popcount(v);
+#endif
+  }
 
   // Visitor of for_each_mesh_contact: one mesh contact of particle i. A
   // contact whose feature already has a history slot is applied at once; a
@@ -166,7 +190,7 @@ struct ForceKernel {
     int* n_waiting;
     GS_HD void operator()(const MeshContact& c) const {
       if constexpr (kHistory) {
-        const int slot = kernel->history.find(i, mesh_partner_id(c.feature_key));
+        const int slot = kernel->surface_history.find(i, mesh_partner_id(c.feature_key));
         if (slot < 0 && *n_waiting < kWaitingMeshContacts) {
           waiting[(*n_waiting)++] = c;
           return;
@@ -187,7 +211,7 @@ struct ForceKernel {
     for_each_mesh_contact(meshes, xi, double(radius[i]), visit);
     for (int k = 0; k < n_waiting; ++k) {
       const MeshContact& c = waiting[k];
-      const int slot = history.inherit(i, mesh_partner_id(c.feature_key), touched, SameMeshContact{&meshes, c.feature_key});
+      const int slot = surface_history.inherit(i, mesh_partner_id(c.feature_key), touched, SameMeshContact{&meshes, c.feature_key});
       add_mesh_contact(i, xi, c, slot < 0 ? kAnySlot : slot, total, touched);
     }
   }
@@ -213,11 +237,22 @@ struct ForceKernel {
     }
   }
 
-  GS_HD GS_INLINE void add_particle_contact(Index i, Index j, const Vec3d& xi, ContactLoad<Real>& total,
-                                  unsigned& touched) const {
+  // The pair (i, j) of list entry `entry`: its springs are that entry's. 1
+  // where they touch; else the entry is released (the contact has ended).
+  GS_HD GS_INLINE int add_particle_contact(Index i, Index j, ListOffset entry, const Vec3d& xi,
+                                           ContactLoad<Real>& total) const {
     ContactKinematics<Real> k;
-    if (!particle_kinematics(i, j, xi, k)) return;
-    apply(i, id[j], pairs(material[i], material[j]), k, total, touched);
+    if (!particle_kinematics(i, j, xi, k)) {
+      if constexpr (kHistory) pair_history.release(entry);
+      return 0;
+    }
+    ContactState<Real> state;
+    if constexpr (kHistory) state = pair_history.load(entry);
+    const ContactLoad<Real> load = contact_load<Real, Model, Effects>(pairs(material[i], material[j]), k, state, dt);
+    if constexpr (kHistory) pair_history.store(entry, state);
+    total.force += load.force;
+    if constexpr (kTorque) total.torque += load.torque;
+    return 1;
   }
 
   GS_HD void add_wall_contact(Index i, int w, const Vec3d& xi, ContactLoad<Real>& total, unsigned& touched) const {
@@ -234,17 +269,17 @@ struct ForceKernel {
                                 int slot = kAnySlot) const {
     ContactState<Real> state;
     if constexpr (kHistory) {
-      if (slot == kAnySlot) slot = history.find_or_claim(i, partner_id, touched);
+      if (slot == kAnySlot) slot = surface_history.find_or_claim(i, partner_id, touched);
       if (slot >= 0) {
         touched |= 1u << slot;
-        state = history.load(i, slot);
+        state = surface_history.load(i, slot);
       } else {
-        report_fault(fault, kFaultSlotsExhausted, id[i], step);
+        report_fault(fault, kFaultSurfaceSlotsExhausted, id[i], step);
       }
     }
     const ContactLoad<Real> load = contact_load<Real, Model, Effects>(p, k, state, dt);
     if constexpr (kHistory) {
-      if (slot >= 0) history.store(i, slot, state);
+      if (slot >= 0) surface_history.store(i, slot, state);
     }
     total.force += load.force;
     if constexpr (kTorque) total.torque += load.torque;

@@ -5,6 +5,7 @@
 #include "contact/contact_models.hpp"
 #include "core/particle_fields.hpp"
 #include "neighbor/cell_grid.hpp"
+#include "neighbor/verlet_list.hpp"
 #include "scene/particle_sources.hpp"
 #include "walls/mesh.hpp"
 
@@ -22,13 +23,20 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   if (makes_torques(scene.effects)) m.force_bytes += 3 * real;  // torque
   const unsigned kept = history_fields_kept(scene.model, scene.effects);
   if (kept != 0) {
-    double slot = sizeof(ParticleId);                     // partner id
+    double springs = 0;  // one contact's history fields
     const bool wide = real == 8;
 #define GS_ADD_FIELD(name, value, bit) \
-  if (kept & (bit)) slot += wide ? sizeof(value<double>) : sizeof(value<float>);
+  if (kept & (bit)) springs += wide ? sizeof(value<double>) : sizeof(value<float>);
     GS_HISTORY_FIELDS(GS_ADD_FIELD)
 #undef GS_ADD_FIELD
-    m.history_bytes = slot * scene.contact_slots;
+    // Surface slots of a partner id and the springs; a touching flag and the
+    // springs per list entry (engine/pair_history.hpp).
+    const double entry = sizeof(std::uint8_t) + springs;
+    m.history_bytes = (sizeof(ParticleId) + springs) * scene.surface_slots + entry * kEstimatedListEntries;
+    // At a rebuild after the store changed, the old list (offsets, entries
+    // turned into ids) and its entries' springs wait beside the new ones to
+    // be merged, with each particle's origin row.
+    m.rebuild_bytes = sizeof(ListOffset) + (sizeof(Index) + entry) * kEstimatedListEntries + sizeof(Index);
   }
   // Verlet list: offsets, fp32 reference positions, entries; the cell
   // list's order of the particles (neighbor/verlet_list.hpp, cell_list.hpp).
@@ -37,7 +45,8 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   // position) when memory is re-sorted, or the sort's keys and second
   // buffers while the cell list is built (engine/step_state.hpp).
   m.staging_bytes = std::max<double>(sizeof(Vec3d), 2 * sizeof(std::uint64_t) + sizeof(Index));
-  m.bytes_per_particle = m.field_bytes + m.force_bytes + m.history_bytes + m.list_bytes + m.staging_bytes;
+  m.bytes_per_particle =
+      m.field_bytes + m.force_bytes + m.history_bytes + m.list_bytes + m.staging_bytes + m.rebuild_bytes;
   const double r = largest_radius(scene);
   if (r > 0) {
     const CellGrid g = make_cell_grid(scene.domain_min, scene.domain_max, 2 * r, periodic_box(scene));

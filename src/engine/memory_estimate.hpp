@@ -12,7 +12,8 @@ struct MemoryEstimate {
   double bytes_per_particle = 0;  // the sum of the parts below
   double field_bytes = 0;         // particle state (core/particle_fields.hpp), per particle
   double force_bytes = 0;         // force and torque, per particle
-  double history_bytes = 0;       // contact history slots, per particle
+  double history_bytes = 0;       // contact history: surface slots and pair entries, per particle
+  double rebuild_bytes = 0;       // the pair history's old table beside the new at a list rebuild, per particle
   double list_bytes = 0;          // Verlet list and the cell list's order, per particle
   double staging_bytes = 0;       // the staging buffer at its largest, per particle
   double cell_bytes = 0;          // cell tables
@@ -24,7 +25,8 @@ struct MemoryEstimate {
 };
 
 // What a run of this scene holds in device memory at its peak, by the layout
-// of ParticleStore, the force arrays, the contact history, the Verlet and
+// of ParticleStore, the force arrays, the contact history (and its old
+// table beside the new at a list rebuild: engine/pair_history.hpp), the Verlet and
 // cell lists (kEstimatedListEntries entries per particle), the staging
 // buffer that also holds the sort's buffers, and the meshes with their
 // binning, at the smallest cells a run uses (one largest diameter: the most

@@ -13,6 +13,18 @@
 
 namespace gs {
 
+// Told when the Verlet list is about to be replaced or invalidated (it still
+// describes the store it was built on, unless the store changed since) and
+// when a new one is built: the pair history (engine/pair_carry.hpp) keeps
+// its springs per list entry.
+struct ListFollower {
+  virtual void list_replacing(const ParticleStore& s) = 0;
+  virtual void list_built(const ParticleStore& s) = 0;
+
+ protected:
+  ~ListFollower() = default;
+};
+
 template <class Exec>
 class NeighbourFinder final : public NeighbourSearch {
  public:
@@ -22,6 +34,7 @@ class NeighbourFinder final : public NeighbourSearch {
       : cells_(Exec::backend), verlet_(Exec::backend), scratch_(scratch), verdicts_(Exec::backend) {}
 
   void build_cell_list(const ParticleStore& s, const CellGrid& grid) override {
+    if (follower_) follower_->list_replacing(s);
     build_cells<Exec>(cells_, s.position.data(), s.id.data(), s.size(), grid, scratch_);
     verlet_.valid = false;
   }
@@ -34,8 +47,14 @@ class NeighbourFinder final : public NeighbourSearch {
                               skin);
       built_at_ = s.revision;
       ++builds_;
+      if (follower_) follower_->list_built(s);
     }
   }
+  void follow(ListFollower* f) { follower_ = f; }
+  // The list itself, for its follower (which takes its arrays when it
+  // detaches: engine/pair_carry.hpp).
+  VerletList& verlet() { return verlet_; }
+  const VerletList& verlet() const { return verlet_; }
   void watch_moves(bool on) override { watching_ = on; }
   bool stale(const ParticleStore& s) override {
     if (!list_valid(s)) return true;
@@ -99,6 +118,7 @@ class NeighbourFinder final : public NeighbourSearch {
   DeviceArray<unsigned char>& scratch_;
   std::uint64_t built_at_ = 0;  // the store's revision at the Verlet list's build
   std::uint64_t builds_ = 0;    // Verlet list builds so far
+  ListFollower* follower_ = nullptr;
 
   // A watched kick-drift: its step, the builds before it, and whether the
   // list described the store then (else it measured moves only).

@@ -7,18 +7,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "engine/gather.hpp"
+#include "engine/pair_carry.hpp"
 #include "engine/particle_movement.hpp"
 #include "engine/step_state.hpp"
 
 namespace gs {
-
-template <class T>
-struct Gather {
-  const T* from;
-  T* to;
-  const Index* order;
-  GS_HD void operator()(Index k) const { to[k] = from[order[k]]; }
-};
 
 // Whether particle i has a stored contact on an analytic wall.
 struct TouchesWall {
@@ -37,7 +31,7 @@ struct TouchesWall {
 template <class Exec, class Real>
 class ParticleMover final : public ParticleMovement {
  public:
-  explicit ParticleMover(StepState<Real>& state) : st_(state) {}
+  ParticleMover(StepState<Real>& state, PairCarry<Exec, Real>& pairs) : st_(state), pairs_(pairs) {}
 
   void reserve(Index n) override {
     st_.forces.force.resize(n);
@@ -77,7 +71,7 @@ class ParticleMover final : public ParticleMovement {
 
   void synchronize() const override { Exec::synchronize(); }
   std::size_t bytes() const override {
-    std::size_t history = st_.history.partner.bytes();
+    std::size_t history = st_.history.partner.bytes() + st_.pairs.bytes();
     for_each_history_field(st_.history, [&](const char*, unsigned, const auto& a) { history += a.bytes(); });
     return st_.forces.force.bytes() + st_.forces.torque.bytes() + history + st_.staging.bytes();
   }
@@ -87,6 +81,7 @@ class ParticleMover final : public ParticleMovement {
   MessageHeader message_header(const ParticleStore& s, Index count, bool with_history) const;
   void grow_history(std::size_t capacity);
   void keep_in_order(ParticleStore& s, const Index* order, Index n);
+  void arrive_from_host(const ParticleStore& s, Index first, const HostHistory& h);
   static std::vector<Vec3<Real>> narrowed(const std::vector<Vec3d>& v, Index n) {
     if (v.size() != std::size_t(n)) throw std::invalid_argument("one force per owned particle expected");
     std::vector<Vec3<Real>> out(v.size());
@@ -101,6 +96,7 @@ class ParticleMover final : public ParticleMovement {
   }
 
   StepState<Real>& st_;
+  PairCarry<Exec, Real>& pairs_;
 };
 
 }  // namespace gs

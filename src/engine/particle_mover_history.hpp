@@ -53,11 +53,12 @@ void ParticleMover<Exec, Real>::reorder(ParticleStore& s, const DeviceArray<Inde
   keep_in_order(s, order.data(), s.n_owned);
 }
 
-// Owned particles order[0, n) become [0, n), with their forces and history.
+// Owned particles order[0, n) become [0, n), with their forces and history
+// (the surface slots gathered, the pair history's origins: engine/pair_carry.hpp).
 template <class Exec, class Real>
 void ParticleMover<Exec, Real>::keep_in_order(ParticleStore& s, const Index* order, Index n) {
   DeviceArray<unsigned char>& tmp = st_.staging;
-  ++s.revision;
+  s.begin_change();
   for_each_kept_particle_field(s, s.fields_kept, [&](const char*, auto& a) { gather_in_place<Exec>(a, order, n, tmp); });
   gather_in_place<Exec>(st_.forces.force, order, n, tmp);
   if (st_.torque) gather_in_place<Exec>(st_.forces.torque, order, n, tmp);
@@ -66,6 +67,7 @@ void ParticleMover<Exec, Real>::keep_in_order(ParticleStore& s, const Index* ord
     for_each_history_field(st_.history, [&](const char*, unsigned, auto& a) {
       gather_slots_in_place<Exec>(a, order, n, st_.history.slots, st_.history.strides, tmp);
     });
+    pairs_.permute(order, n, tmp);
   }
 }
 
@@ -109,27 +111,49 @@ void ParticleMover<Exec, Real>::grow_history(std::size_t capacity) {
   h.strides = fresh;
 }
 
+// Every owned particle's row (a restart's), before the first list is built.
 template <class Exec, class Real>
 void ParticleMover<Exec, Real>::set_history(const ParticleStore& s, const HostHistory& h) {
   if (!st_.keeps_history()) return;
-  if (h.slots != st_.history.slots)
+  if (h.slots != st_.row_width)
     throw std::runtime_error("contact history has " + std::to_string(h.slots) + " slots per particle, this run uses " +
-                             std::to_string(st_.history.slots));
+                             std::to_string(st_.row_width));
+  if (st_.pairs.attached || st_.pairs.pending_rows != 0 || st_.pairs.origin.size() != 0)
+    throw std::logic_error("set_history after the pair history was set");
   reserve(s.size());
-  const HistoryStrides at = st_.history.strides;
-  const std::size_t slots = std::size_t(h.slots), entries = slots * st_.history.capacity;
-  // The layout of `at` from rows i * slots + k, narrowed to the force precision.
-  auto layout = [&](const auto& rows, auto& field, auto empty) {
-    std::vector<decltype(empty)> device(entries, empty);
-    for (Index i = 0; i < s.n_owned && !rows.empty(); ++i)
-      for (std::size_t k = 0; k < slots; ++k)
-        device[at.at(int(k), std::size_t(i))] = decltype(empty)(rows[i * slots + k]);
-    field.from_host(device);
+  arrive_from_host(s, 0, h);
+}
+
+// Host rows of particles [first, first + rows) as arrivals (engine/pair_carry.hpp),
+// through packed slot-major blocks in backend memory in the force precision.
+template <class Exec, class Real>
+void ParticleMover<Exec, Real>::arrive_from_host(const ParticleStore& s, Index first, const HostHistory& h) {
+  const std::size_t slots = std::size_t(h.slots);
+  const std::size_t count = slots == 0 ? 0 : h.partner.size() / slots;
+  if (count == 0) return;
+  auto block_of = [&](const auto& rows, auto& device) {
+    using T = typename std::decay_t<decltype(device)>::value_type;
+    std::vector<T> block(slots * count);
+    for (std::size_t i = 0; i < count; ++i)
+      for (std::size_t k = 0; k < slots; ++k) block[k * count + i] = T(rows[i * slots + k]);
+    device.from_host(block);
   };
-  layout(h.partner, st_.history.partner, kNoPartner);
-  for_each_history_field(h, st_.history, [&](const char*, unsigned bit, const auto& rows, auto& field) {
-    if (st_.kept & bit) layout(rows, field, typename std::decay_t<decltype(field)>::value_type{});
+  DeviceArray<ParticleId> partner(Exec::backend);
+  block_of(h.partner, partner);
+  ContactHistory<Real> fields;  // one block per kept field, in GS_HISTORY_FIELDS order
+  const void* at[kHistoryFieldCount] = {};
+  int f = 0;
+  for_each_history_field(h, fields, [&](const char* name, unsigned bit, const auto& rows, auto& device) {
+    device = std::decay_t<decltype(device)>(Exec::backend);
+    if (st_.kept & bit) {
+      if (rows.size() != h.partner.size())
+        throw std::invalid_argument(std::string("contact history lacks the field ") + name + " this run keeps");
+      block_of(rows, device);
+      at[f] = device.data();
+    }
+    ++f;
   });
+  pairs_.arrive(first, Index(count), partner.data(), at, s.id.data());
 }
 
 }  // namespace gs

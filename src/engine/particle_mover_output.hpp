@@ -22,40 +22,6 @@ struct GatherRowsAs {
   }
 };
 
-// History row k (its `slots` entries, in slot order) of particle
-// order[first + k], from the layout `at`, in the host's type U.
-template <class T, class U>
-struct GatherHistoryRowsAs {
-  const T* from;
-  U* to;
-  const Index* order;
-  Index first;
-  HistoryStrides at;
-  int slots;
-  GS_HD void operator()(Index k) const {
-    const Index r = first + k;
-    const std::size_t p = std::size_t(order ? order[r] : r);
-    for (int s = 0; s < slots; ++s) to[std::size_t(k) * std::size_t(slots) + std::size_t(s)] = U(from[at.at(s, p)]);
-  }
-};
-
-// Occupied history slots of particle order[first + k], at row k.
-struct CountContactsOf {
-  const ParticleId* partner;
-  HistoryStrides strides;
-  int slots;
-  const Index* order;
-  Index first;
-  std::uint16_t* count;
-  GS_HD void operator()(Index k) const {
-    const Index r = first + k;
-    const std::size_t p = std::size_t(order ? order[r] : r);
-    unsigned c = 0;
-    for (int s = 0; s < slots; ++s) c += partner[strides.at(s, p)] != kNoPartner;
-    count[k] = std::uint16_t(c);
-  }
-};
-
 // Host array `out` of n rows of `width` values, written by rows(first, m,
 // to): a kernel that writes rows [first, first + m) at `to`. On the CPU the
 // kernel writes `out` itself; on a GPU it writes the staging array a chunk of
@@ -114,39 +80,36 @@ void ParticleMover<Exec, Real>::owned_to_host(const ParticleStore& s, const Inde
     into.contacts.clear();
     return;
   }
-  const ContactHistory<Real>& h = st_.history;
+  const ContactRows rows = pairs_.rows(s);
   rows_to_host<Exec>(into.contacts, n, 1, pins, staging, [&](Index first, Index m, std::uint16_t* to) {
-    Exec::parallel_for(m, CountContactsOf{h.partner.data(), h.strides, h.slots, order, first, to});
+    Exec::parallel_for(m, CountRowContacts{rows, order, first, to});
   });
 }
 
+// Each owned particle's row of contacts (engine/pair_history.hpp,
+// ContactRows), widened to fp64. Only the fields the run keeps: a checkpoint
+// of a frictional bed without rolling resistance carries no rolling zeros.
 template <class Exec, class Real>
 void ParticleMover<Exec, Real>::history_to_host(const ParticleStore& s, const Index* order, HostHistory& into,
                                                 HostPins& pins) const {
-  into.slots = st_.history.slots;
-  if (!st_.keeps_history()) {
-    into.partner.clear();
-    for_each_history_field(into, [](const char*, unsigned, auto& rows) { rows.clear(); });
-    return;
-  }
+  into.slots = st_.row_width;
+  into.partner.clear();
+  for_each_history_field(into, [](const char*, unsigned, auto& rows) { rows.clear(); });
+  if (!st_.keeps_history()) return;
   const Index n = s.n_owned;
-  const ContactHistory<Real>& h = st_.history;
-  // Rows i * slots + k, widened to fp64. Only the fields the run keeps: a
-  // checkpoint of a frictional bed without rolling resistance carries no
-  // rolling zeros.
-  auto rows = [&](const auto& field, auto& out) {
-    using T = typename std::decay_t<decltype(field)>::value_type;
+  const std::size_t width = std::size_t(st_.row_width);
+  const ContactRows rows = pairs_.rows(s);
+  rows_to_host<Exec>(into.partner, n, width, pins, st_.staging, [&](Index first, Index m, ParticleId* to) {
+    Exec::parallel_for(m, ContactRowPartners{rows, to, order, first, m, false, s.id.data(), st_.fault.data()});
+  });
+  pairs_.for_each_field_sources(into, [&](int, const auto& from, auto& out) {
+    using T = std::remove_const_t<std::remove_pointer_t<std::decay_t<decltype(from[0])>>>;
     using U = typename std::decay_t<decltype(out)>::value_type;
-    if (field.size() == 0) {
-      out.clear();
-      return;
-    }
-    rows_to_host<Exec>(out, n, std::size_t(h.slots), pins, st_.staging, [&](Index first, Index m, U* to) {
-      Exec::parallel_for(m, GatherHistoryRowsAs<T, U>{field.data(), to, order, first, h.strides, h.slots});
+    rows_to_host<Exec>(out, n, width, pins, st_.staging, [&](Index first, Index m, U* to) {
+      Exec::parallel_for(m, ContactRowValues<T, U>{rows, {from[0], from[1], from[2], from[3]}, to, order, first, m,
+                                                   false});
     });
-  };
-  rows(h.partner, into.partner);
-  for_each_history_field(h, into, [&](const char*, unsigned, const auto& field, auto& out) { rows(field, out); });
+  });
 }
 
 }  // namespace gs

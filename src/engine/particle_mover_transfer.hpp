@@ -9,35 +9,6 @@
 
 namespace gs {
 
-// History entries of particles `which`, laid out as `strides` says, into a
-// packed slot-major block with stride m.
-template <class T>
-struct GatherHistory {
-  const T* from;
-  T* to;
-  const Index* which;
-  HistoryStrides strides;
-  Index m;
-  GS_HD void operator()(Index k) const {
-    const Index s = k / m, i = k % m;
-    to[std::size_t(s) * std::size_t(m) + std::size_t(i)] = from[strides.at(s, std::size_t(which[i]))];
-  }
-};
-
-// The inverse: a packed block of m particles written at [first, first + m).
-template <class T>
-struct ScatterHistory {
-  const T* from;
-  T* to;
-  HistoryStrides strides;
-  Index first;
-  Index m;
-  GS_HD void operator()(Index k) const {
-    const Index s = k / m, i = k % m;
-    to[strides.at(s, std::size_t(first + i))] = from[std::size_t(s) * std::size_t(m) + std::size_t(i)];
-  }
-};
-
 // Staging buffers are the kernels' own (`scratch`), reused from call to call:
 // allocating device memory every step would cost more than the copies.
 template <class T>
@@ -52,22 +23,6 @@ void gather_into(const DeviceArray<T>& a, const DeviceArray<Index>& which, unsig
   Exec::parallel_for(Index(which.size()), Gather<T>{a.data(), reinterpret_cast<T*>(to), which.data()});
 }
 
-template <class Exec, class T>
-void gather_history_into(const DeviceArray<T>& a, const DeviceArray<Index>& which, int slots,
-                         const HistoryStrides& strides, unsigned char* to) {
-  const Index m = Index(which.size());
-  Exec::parallel_for(Index(slots) * m, GatherHistory<T>{a.data(), reinterpret_cast<T*>(to), which.data(), strides, m});
-}
-
-// Rows i * slots + s of a packed slot-major block of m particles.
-template <class T>
-std::vector<T> slot_major_to_rows(const std::vector<T>& block, int slots, std::size_t m) {
-  std::vector<T> rows(block.size());
-  for (std::size_t i = 0; i < m; ++i)
-    for (std::size_t s = 0; s < std::size_t(slots); ++s) rows[i * std::size_t(slots) + s] = block[s * m + i];
-  return rows;
-}
-
 template <class T>
 struct CopyTo {
   const T* from;
@@ -79,15 +34,6 @@ struct CopyTo {
 template <class Exec, class T>
 void scatter_from(const unsigned char* from, DeviceArray<T>& a, std::size_t first, Index m) {
   Exec::parallel_for(m, CopyTo<T>{reinterpret_cast<const T*>(from), a.data() + first});
-}
-
-template <class Exec, class T>
-void scatter_history_from_host(DeviceArray<T>& a, const std::vector<T>& block, int slots, const HistoryStrides& strides,
-                               Index first, DeviceArray<unsigned char>& scratch) {
-  const Index m = Index(block.size() / std::size_t(slots));
-  T* packed = staging<T>(scratch, block.size());
-  if (!block.empty()) backend_copy_from_host(Exec::backend, packed, block.data(), block.size() * sizeof(T));
-  Exec::parallel_for(Index(slots) * m, ScatterHistory<T>{packed, a.data(), strides, first, m});
 }
 
 template <class T>
@@ -104,7 +50,7 @@ MessageHeader ParticleMover<Exec, Real>::message_header(const ParticleStore& s, 
   h.check = kMessageCheck;
   h.particle_fields = s.fields_kept;
   if (with_history && st_.keeps_history()) {
-    h.slots = st_.history.slots;
+    h.slots = st_.row_width;
     h.real_bytes = std::int32_t(sizeof(Real));
     h.fields = st_.kept;
   }
@@ -125,11 +71,16 @@ MessageHeader ParticleMover<Exec, Real>::pack(const ParticleStore& s, const Devi
     ++k;
   });
   if (h.slots == 0) return h;
-  gather_history_into<Exec>(st_.history.partner, w, h.slots, st_.history.strides, b + at.partner);
-  k = 0;
-  for_each_history_field(st_.history, [&](const char*, unsigned bit, const auto& a) {
-    if (h.fields & bit) gather_history_into<Exec>(a, w, h.slots, st_.history.strides, b + at.history[k]);
-    ++k;
+  // Each particle's row of contacts (engine/pair_history.hpp), slot-major.
+  const Index m = Index(w.size());
+  const ContactRows rows = pairs_.rows(s);
+  Exec::parallel_for(m, ContactRowPartners{rows, reinterpret_cast<ParticleId*>(b + at.partner), w.data(), 0, m, true,
+                                           s.id.data(), st_.fault.data()});
+  pairs_.for_each_field_sources(st_.history, [&](int index, const auto& from, const auto&) {
+    using T = std::remove_const_t<std::remove_pointer_t<std::decay_t<decltype(from[0])>>>;
+    Exec::parallel_for(m, ContactRowValues<T, T>{rows, {from[0], from[1], from[2], from[3]},
+                                                 reinterpret_cast<T*>(b + at.history[std::size_t(index)]), w.data(),
+                                                 0, m, true});
   });
   return h;
 }
@@ -162,17 +113,14 @@ void ParticleMover<Exec, Real>::unpack(ParticleStore& s, const MessageHeader& h,
   else s.n_owned += m;
   reserve(s.size());
   if (h.slots == 0) return;
-  auto scatter_history = [&](std::size_t offset, auto& a) {
-    using T = typename std::remove_reference_t<decltype(a)>::value_type;
-    Exec::parallel_for(Index(h.slots) * m, ScatterHistory<T>{reinterpret_cast<const T*>(payload + offset), a.data(),
-                                                            st_.history.strides, Index(first), m});
-  };
-  scatter_history(at.partner, st_.history.partner);
+  // The rows wait for the next list build (engine/pair_carry.hpp).
+  const void* fields[kHistoryFieldCount] = {};
   k = 0;
-  for_each_history_field(st_.history, [&](const char*, unsigned bit, auto& a) {
-    if (h.fields & bit) scatter_history(at.history[k], a);
+  for_each_history_field(st_.history, [&](const char*, unsigned bit, auto&) {
+    if (h.fields & bit) fields[k] = payload + at.history[std::size_t(k)];
     ++k;
   });
+  pairs_.arrive(Index(first), m, reinterpret_cast<const ParticleId*>(payload + at.partner), fields, s.id.data());
 }
 
 template <class Exec, class Real>
@@ -200,22 +148,13 @@ void ParticleMover<Exec, Real>::append(ParticleStore& s, const ParticleRecords& 
   if (as_ghosts || !st_.keeps_history() || m == 0) return;
 
   const HostHistory& h = r.history;
-  if (h.slots != st_.history.slots)
+  if (h.slots != st_.row_width)
     throw std::runtime_error("arriving particles carry " + std::to_string(h.slots) + " history slots, this run uses " +
-                             std::to_string(st_.history.slots));
-  const std::size_t slots = std::size_t(h.slots), count = std::size_t(m);
-  // Rows i * slots + k into a packed slot-major block, in the device type.
-  auto scatter_rows = [&](const auto& rows, auto& a) {
-    using T = typename std::decay_t<decltype(a)>::value_type;
-    std::vector<T> block(slots * count);
-    for (std::size_t i = 0; i < count; ++i)
-      for (std::size_t k = 0; k < slots; ++k) block[k * count + i] = T(rows[i * slots + k]);
-    scatter_history_from_host<Exec>(a, block, h.slots, st_.history.strides, Index(first), st_.staging);
-  };
-  scatter_rows(h.partner, st_.history.partner);
-  for_each_history_field(h, st_.history, [&](const char*, unsigned bit, const auto& rows, auto& a) {
-    if (st_.kept & bit) scatter_rows(rows, a);
-  });
+                             std::to_string(st_.row_width));
+  if (h.partner.size() != std::size_t(m) * std::size_t(h.slots))
+    throw std::invalid_argument("arriving particles carry " + std::to_string(h.partner.size()) +
+                                " history entries, not one row each");
+  arrive_from_host(s, Index(first), h);
 }
 
 // Selected and gathered on the backend, so only the particles on a wall
@@ -223,7 +162,7 @@ void ParticleMover<Exec, Real>::append(ParticleStore& s, const ParticleRecords& 
 template <class Exec, class Real>
 ParticleRecords ParticleMover<Exec, Real>::wall_contact_history(const ParticleStore& s) const {
   ParticleRecords r;
-  r.history.slots = st_.history.slots;
+  r.history.slots = st_.row_width;
   if (!st_.keeps_history() || s.n_owned == 0) return r;
   // Selected into the staging buffer (an index per owned particle); only the
   // m selected are kept apart, so the output holds 4 bytes per particle on a
@@ -237,25 +176,27 @@ ParticleRecords ParticleMover<Exec, Real>::wall_contact_history(const ParticleSt
   DeviceArray<Index> which(Exec::backend, std::size_t(m));
   backend_copy(Exec::backend, which.data(), selected.data(), std::size_t(m) * sizeof(Index));
   DeviceArray<unsigned char> block(Exec::backend);
-  // Rows i * slots + k of field, widened to the host type of `rows`.
-  auto fetch = [&](const auto& field, auto& rows) {
-    using T = typename std::decay_t<decltype(field)>::value_type;
-    using Host = typename std::decay_t<decltype(rows)>::value_type;
-    block.resize_discarding(std::size_t(m) * sizeof(T) * std::size_t(st_.history.slots));
-    gather_history_into<Exec>(field, which, st_.history.slots, st_.history.strides, block.data());
-    std::vector<T> packed(std::size_t(m) * std::size_t(st_.history.slots));
-    backend_copy_to_host(Exec::backend, packed.data(), block.data(), packed.size() * sizeof(T));
-    const std::vector<T> device_rows = slot_major_to_rows(packed, st_.history.slots, std::size_t(m));
-    rows.resize(device_rows.size());
-    for (std::size_t e = 0; e < rows.size(); ++e) rows[e] = Host(device_rows[e]);
-  };
+  const std::size_t entries = std::size_t(m) * std::size_t(st_.row_width);
+  const ContactRows rows = pairs_.rows(s);
   block.resize_discarding(std::size_t(m) * sizeof(ParticleId));
   gather_into<Exec>(s.id, which, block.data());
   r.id.resize(std::size_t(m));
   backend_copy_to_host(Exec::backend, r.id.data(), block.data(), r.id.size() * sizeof(ParticleId));
-  fetch(st_.history.partner, r.history.partner);
-  for_each_history_field(st_.history, r.history, [&](const char*, unsigned bit, const auto& field, auto& rows) {
-    if (st_.kept & bit) fetch(field, rows);
+  // Each particle's row (engine/pair_history.hpp), widened to the host type.
+  block.resize_discarding(entries * sizeof(ParticleId));
+  Exec::parallel_for(m, ContactRowPartners{rows, reinterpret_cast<ParticleId*>(block.data()), which.data(), 0, m, false,
+                                           s.id.data(), st_.fault.data()});
+  r.history.partner.resize(entries);
+  backend_copy_to_host(Exec::backend, r.history.partner.data(), block.data(), entries * sizeof(ParticleId));
+  pairs_.for_each_field_sources(r.history, [&](int, const auto& from, auto& host) {
+    using T = std::remove_const_t<std::remove_pointer_t<std::decay_t<decltype(from[0])>>>;
+    block.resize_discarding(entries * sizeof(T));
+    Exec::parallel_for(m, ContactRowValues<T, T>{rows, {from[0], from[1], from[2], from[3]},
+                                                 reinterpret_cast<T*>(block.data()), which.data(), 0, m, false});
+    std::vector<T> device_rows(entries);
+    backend_copy_to_host(Exec::backend, device_rows.data(), block.data(), entries * sizeof(T));
+    host.resize(entries);
+    for (std::size_t e = 0; e < entries; ++e) host[e] = typename std::decay_t<decltype(host)>::value_type(device_rows[e]);
   });
   return r;
 }

@@ -32,6 +32,18 @@ struct ContactHistory {
 #undef GS_DECLARE_FIELD
 };
 
+struct ParticleStore;
+
+// Told before a store's particles are added, removed, reordered or their
+// ghosts dropped: what indexes the store by position (the Verlet list's
+// pair springs, engine/pair_history.hpp) must read it one last time.
+struct StoreObserver {
+  virtual void store_changing(const ParticleStore& s) = 0;
+
+ protected:
+  ~StoreObserver() = default;
+};
+
 struct ParticleStore {
   Backend backend = Backend::cpu;
   Index n_owned = 0;
@@ -41,6 +53,9 @@ struct ParticleStore {
   std::uint64_t revision = 0;
   // The optional fields this run keeps (ParticleField bits); the others stay empty.
   unsigned fields_kept = 0;
+  // Set by the pair history when a list is built on the store (mutable: the
+  // build sees a const store); null before.
+  mutable StoreObserver* observer = nullptr;
 
 #define GS_DECLARE_FIELD(name, type, kept) DeviceArray<type> name;
   GS_PARTICLE_FIELDS(GS_DECLARE_FIELD)
@@ -53,10 +68,16 @@ struct ParticleStore {
     backend = b;
     for_each_particle_field(*this, [b](const char*, auto& a) { a = std::decay_t<decltype(a)>(b); });
   }
+  // Before particles are added, removed or reordered: the observer reads
+  // the store as it is, then the revision moves on.
+  void begin_change() {
+    if (observer) observer->store_changing(*this);
+    ++revision;
+  }
   // Sets the length of every array (contents up to min(old, n) are kept).
   void resize_arrays(std::size_t n) {
+    begin_change();
     for_each_kept_particle_field(*this, fields_kept, [n](const char*, auto& a) { a.resize(n); });
-    ++revision;
   }
   void drop_ghosts() {
     n_ghost = 0;

@@ -91,7 +91,7 @@ void Simulation::set_up(const SceneSpec& scene) {
   store_.place_on(b);
   store_.fields_kept = particle_fields_kept(scene);
   kernels_ = make_step_kernels({b, scene.precision, scene.model, scene.effects},
-                               {scene.materials, scene.pairs, scene.contact_slots});
+                               {scene.materials, scene.pairs, scene.contact_slots, scene.surface_slots});
   const double diameter = 2.0 * largest_radius(scene);
   skin_ = kernels_->neighbours().uses_verlet_list() ? options_.verlet_skin * diameter : 0.0;
   kernels_->neighbours().watch_moves(!exchange_);

@@ -59,7 +59,8 @@ struct KernelChoice {
 struct ContactInputs {
   const std::vector<MaterialSpec>& materials;
   const std::vector<PairSpec>& pairs;
-  int contact_slots;
+  int contact_slots;      // a particle's row of contacts (messages, checkpoints)
+  int surface_slots = 4;  // its slots for walls and mesh features (scene key surface_slots)
 };
 std::unique_ptr<StepKernels> make_step_kernels(const KernelChoice& choice, const ContactInputs& contacts);
 std::unique_ptr<StepKernels> make_step_kernels_cpu(const KernelChoice& choice, const ContactInputs& contacts);

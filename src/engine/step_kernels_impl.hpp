@@ -8,6 +8,7 @@
 #include "contact/contact_models.hpp"
 #include "engine/integrator.hpp"
 #include "engine/neighbour_finder.hpp"
+#include "engine/pair_carry.hpp"
 #include "engine/particle_mover.hpp"
 #include "engine/particle_remover.hpp"
 #include "engine/step_kernels.hpp"
@@ -34,8 +35,10 @@ template <class Exec, class Real>
 class StepKernelsOf final : public StepKernels {
  public:
   StepKernelsOf(const KernelChoice& c, const ContactInputs& in)
-      : state_(Exec::backend, history_fields_kept(c.model, c.effects), makes_torques(c.effects), in.contact_slots),
-        finder_(state_.staging), mover_(state_), remover_(mover_), integrator_(state_, finder_),
+      : state_(Exec::backend, history_fields_kept(c.model, c.effects), makes_torques(c.effects), in.contact_slots,
+               in.surface_slots),
+        finder_(state_.staging), carry_(state_, finder_), mover_(state_, carry_), remover_(mover_),
+        integrator_(state_, finder_),
         forces_(dispatch_forces<Exec, Real>(c, in, state_, finder_)) {}
 
   ParticleMovement& movement() override { return mover_; }
@@ -66,6 +69,7 @@ class StepKernelsOf final : public StepKernels {
  private:
   StepState<Real> state_;
   NeighbourFinder<Exec> finder_;
+  PairCarry<Exec, Real> carry_;  // the pair history across list builds and store changes
   ParticleMover<Exec, Real> mover_;
   ParticleRemover<Exec> remover_;
   Integrator<Exec, Real> integrator_;

@@ -1,12 +1,32 @@
 #include "io/state_digest.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 
 #include "io/fnv1a.hpp"
 
 namespace gs {
+
+namespace {
+
+bool bits_nonzero(double v) { return v != 0 || std::signbit(v); }  // -0.0 and NaN count
+bool bits_nonzero(const Vec3d& v) { return bits_nonzero(v.x) || bits_nonzero(v.y) || bits_nonzero(v.z); }
+
+// Whether entry e of `history` holds a contact that counts: a partner, and
+// some kept field not +0 (a contact with zero springs continues exactly as a
+// new one, which starts from zero: contact/contact_slots.hpp).
+bool holds_contact(const HostHistory& history, std::size_t e) {
+  if (history.partner[e] == kNoPartner) return false;
+  bool state = false;
+  for_each_history_field(history, [&](const char*, unsigned, const auto& field) {
+    if (!field.empty() && bits_nonzero(field[e])) state = true;
+  });
+  return state;
+}
+
+}  // namespace
 
 std::uint64_t state_digest(const ParticleSnapshot& s, const HostHistory& history) {
   const std::size_t n = s.size(), slots = std::size_t(history.slots);
@@ -24,11 +44,18 @@ std::uint64_t state_digest(const ParticleSnapshot& s, const HostHistory& history
   auto add_row = [&](const auto& field, std::size_t r) {
     if (!field.empty()) h.add_value(field[r]);
   };
+  std::vector<std::size_t> contacts;  // one particle's entries, by ascending partner id
   for (std::size_t r : order) {
     for_each_particle_field(s, [&](const char*, const auto& field) { add_row(field, r); });
     add_row(s.force, r), add_row(s.torque, r);
-    for (std::size_t k = 0; k < slots && !history.partner.empty(); ++k) {
-      const std::size_t e = r * slots + k;
+    if (history.partner.empty()) continue;
+    contacts.clear();
+    for (std::size_t k = 0; k < slots; ++k)
+      if (holds_contact(history, r * slots + k)) contacts.push_back(r * slots + k);
+    std::sort(contacts.begin(), contacts.end(),
+              [&](std::size_t a, std::size_t b) { return history.partner[a] < history.partner[b]; });
+    h.add_value(std::uint64_t(contacts.size()));
+    for (std::size_t e : contacts) {
       h.add_value(history.partner[e]);
       for_each_history_field(history, [&](const char*, unsigned, const auto& field) { add_row(field, e); });
     }

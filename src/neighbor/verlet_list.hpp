@@ -14,6 +14,12 @@
 // sum is the same for any build schedule, any number of ranks and either
 // backend.
 //
+// Why the pairs' springs live here: entry k of particle i also names where
+// the contact history of the pair (i, list[k]) is kept (one entry of the
+// same index: contact/pair_springs.hpp), so the force kernel needs no search
+// and no partner id is stored; across a rebuild the springs are carried over
+// by partner id (engine/pair_history.hpp), before the old list is replaced.
+//
 // Why on the GPU too: a dense bed's 27 cells hold about 31 candidates per
 // particle, of which about six touch it; scanning them every step in fp64
 // costs more than reading a short list of 4-byte indices (six entries per
@@ -32,6 +38,7 @@
 // moves.
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "backend/device_array.hpp"
@@ -47,13 +54,18 @@ namespace gs {
 // A build that would hold more is refused (OffsetsWrapped).
 using ListOffset = std::uint32_t;
 
-// Contact candidates of particle i from the list, in ascending id.
+// Contact candidates of particle i from the list, in ascending id: visit(j,
+// k) with k the entry's index (where the pair's springs live:
+// contact/pair_springs.hpp), or visit(j) for a visitor that takes only j.
 struct ListCandidates {
   const ListOffset* begin;  // per owned particle + 1: i's entries are list[begin[i], begin[i + 1])
   const Index* list;        // store indices of the neighbours
   template <class Visit>
   GS_HD GS_INLINE void for_each(Index i, const Vec3d& /*xi*/, Visit& visit) const {
-    for (ListOffset k = begin[i]; k < begin[i + 1]; ++k) visit(list[k]);
+    for (ListOffset k = begin[i]; k < begin[i + 1]; ++k) {
+      if constexpr (std::is_invocable_v<Visit&, Index, ListOffset>) visit(list[k], k);
+      else visit(list[k]);
+    }
   }
 };
 

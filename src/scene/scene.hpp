@@ -78,7 +78,8 @@ struct SceneSettings {
   std::string stable_step_binding;   // the spring that sets it
   double duration = 0;               // simulated time [s]
   OutputSpec output;
-  int contact_slots = 12;            // history slots per particle
+  int contact_slots = 12;            // contacts a particle may have (its row in checkpoints and messages)
+  int surface_slots = 4;             // of them, with walls and mesh features at once (history slots)
   DecompositionSpec decomposition;
   std::optional<MixingSpec> mixing;  // analysis.mixing (docs/MIXING.md); none: no mixing analysis
   std::optional<MarkingSpec> marking;  // none: markers stay as created

@@ -24,7 +24,7 @@ const std::vector<std::string> kTopKeys = {"domain",    "gravity", "contact_mode
                                            "materials", "pairs",   "particles",     "walls",         "time_step",
                                            "duration",  "output",  "contact_slots", "decomposition",
                                            "analysis",  "marking", "outlets",       "inlets",
-                                           "measurements"};
+                                           "measurements", "surface_slots"};
 
 void parse_decomposition(const Map& m, SceneSpec& s) {
   DecompositionSpec& d = s.decomposition;
@@ -89,6 +89,7 @@ void parse_globals(const Map& top, SceneSpec& s) {
     s.output.checkpoint_minutes = number_or(o, "checkpoint_minutes", 0.0, nonnegative);
   }
   if (top.has("contact_slots")) s.contact_slots = int(integer(top.get("contact_slots"), 1, kMaxContactSlots));
+  if (top.has("surface_slots")) s.surface_slots = int(integer(top.get("surface_slots"), 1, kMaxContactSlots));
   if (top.has("decomposition")) parse_decomposition(Map(top.get("decomposition"), {"method", "axis", "rebalance_threshold"}), s);
 }
 

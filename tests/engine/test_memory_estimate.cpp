@@ -35,17 +35,20 @@ SceneSpec lattice_scene(int side, unsigned effects) {
 
 // Per particle, from the declarations: id 4, material and marker 1 each,
 // radius, mass and inertia 4 each, position, velocity and angular velocity
-// 24 each, orientation 16; fp32 force and torque 12 each; 12 history slots
-// of a 4-byte partner id and a 12-byte spring; Verlet list offsets 4, fp32
-// reference 12, 12 entries of 4; the cell order 4; staging 24 (a position).
+// 24 each, orientation 16; fp32 force and torque 12 each; 4 surface slots
+// of a 4-byte partner id and a 12-byte spring, and per list entry a
+// touching flag and a spring (13); Verlet list offsets 4, fp32 reference 12,
+// 12 entries of 4; the cell order 4; staging 24 (a position); at a rebuild
+// the old table: offsets 4, 12 entries of an id and a pair entry, origin 4.
 TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   const MemoryEstimate m = estimate_memory(lattice_scene(2, kFriction));
   EXPECT_EQ(m.field_bytes, 4 + 1 + 1 + 3 * 4 + 3 * 24 + 16);
   EXPECT_EQ(m.force_bytes, 24);
-  EXPECT_EQ(m.history_bytes, 12 * (4 + 12));
+  EXPECT_EQ(m.history_bytes, 4 * (4 + 12) + 12 * 13);
   EXPECT_EQ(m.list_bytes, 4 + 12 + 12 * 4 + 4);
   EXPECT_EQ(m.staging_bytes, 24);
-  EXPECT_EQ(m.bytes_per_particle, 106 + 24 + 192 + 68 + 24);
+  EXPECT_EQ(m.rebuild_bytes, 4 + 12 * (4 + 13) + 4);
+  EXPECT_EQ(m.bytes_per_particle, 106 + 24 + 220 + 68 + 24 + 212);
   const MemoryEstimate none = estimate_memory(lattice_scene(2, 0));
   EXPECT_EQ(none.history_bytes, 0);
   EXPECT_EQ(none.force_bytes, 12);  // no torque without friction
@@ -67,12 +70,15 @@ Measured measure(const SceneSpec& scene, long long steps) {
 }
 
 // The run's peak against the estimate with the lattice's own list entries
-// (the estimate assumes 12). A static bed is never re-sorted, so its staging
-// buffer holds only the sort's 20 bytes; a bed drifting as one body (the
-// same neighbours throughout) rebuilds its list every 20 steps and is
-// re-sorted at the rebuild after step 25, so the buffer holds a position's
-// 24. A sort buffer held apart from the staging buffer, or a buffer grown by
-// copying (its old and new storage at once), shows as 20 bytes or more.
+// (the estimate assumes 12), each 4 bytes in the list and, with friction, 13
+// of pair history. A static bed is never re-sorted, so its staging buffer
+// holds only the sort's 20 bytes, and builds its list once (nothing to carry
+// over); a bed drifting as one body (the same neighbours throughout)
+// rebuilds its list every 20 steps and is re-sorted at the rebuild after
+// step 25, so the buffer holds a position's 24, and at each rebuild the old
+// pair table waits beside the new. A sort buffer held apart from the staging
+// buffer, or a buffer grown by copying (its old and new storage at once),
+// shows as 20 bytes or more.
 TEST(MemoryEstimate, MatchesTheRunsPeakOnTheCpu) {
   const int side = 16;
   const double entries = 6.0 - 6.0 / side;
@@ -87,7 +93,10 @@ TEST(MemoryEstimate, MatchesTheRunsPeakOnTheCpu) {
       if (drift) {
         EXPECT_GE(got.builds, 2);
       }
-      const double expected = m.bytes_per_particle - 4 * (kEstimatedListEntries - entries) - (drift ? 0 : 24 - 20);
+      const double missing = kEstimatedListEntries - entries, pair_entry = effects != 0 ? 1 + 12 : 0;
+      double expected = m.bytes_per_particle - missing * (4 + pair_entry);
+      if (drift) expected -= effects != 0 ? missing * (4 + pair_entry) : 0;
+      else expected -= m.rebuild_bytes + (24 - 20);
       // Within the cell offsets (the estimate's cells, one diameter, are more
       // than the run's) and a byte per particle: the fault flag, the pair
       // table, alignment.

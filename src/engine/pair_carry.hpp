@@ -1,0 +1,183 @@
+#pragma once
+// PairCarry: the particle-pair history (engine/pair_history.hpp) carried
+// across what changes the store and the Verlet list, on an execution policy:
+// detached before the store changes or the list is replaced, merged into
+// the entries of each new list, and read as per-particle rows (messages,
+// checkpoints, output) in either state.
+#include <stdexcept>
+
+#include "engine/gather.hpp"
+#include "engine/neighbour_finder.hpp"
+#include "engine/step_state.hpp"
+
+namespace gs {
+
+template <class Exec, class Real>
+class PairCarry final : public StoreObserver, public ListFollower {
+ public:
+  PairCarry(StepState<Real>& state, NeighbourFinder<Exec>& finder) : st_(state), finder_(finder) {
+    finder_.follow(this);
+  }
+  PairCarry(const PairCarry&) = delete;
+  PairCarry& operator=(const PairCarry&) = delete;
+
+  void store_changing(const ParticleStore& s) override { detach(s); }
+  void list_replacing(const ParticleStore& s) override { detach(s); }
+  void list_built(const ParticleStore& s) override;
+
+  // Detached: every owned particle [0, n) has an origin (none where it had not).
+  void ensure_origin(Index n) {
+    PairHistory<Real>& h = st_.pairs;
+    const Index had = Index(h.origin.size());
+    if (had >= n) return;
+    h.origin.resize(std::size_t(n));
+    Exec::parallel_for(n - had, Fill<Index>{h.origin.data() + had, kNoOrigin});
+  }
+  // Owned particles order[0, n) become [0, n) (after the store began to change).
+  void permute(const Index* order, Index n, DeviceArray<unsigned char>& scratch) {
+    if (!st_.keeps_history()) return;
+    ensure_origin(n);
+    PairHistory<Real>& h = st_.pairs;
+    scratch.resize_discarding(std::size_t(n) * sizeof(Index));
+    Index* tmp = reinterpret_cast<Index*>(scratch.data());
+    Exec::parallel_for(n, Gather<Index>{h.origin.data(), tmp, order});
+    h.origin.resize(std::size_t(n));
+    backend_copy(Exec::backend, h.origin.data(), tmp, std::size_t(n) * sizeof(Index));
+  }
+  // m arriving owned particles at [first, first + m), with rows given as
+  // packed slot-major blocks in backend memory: partner ids, and each kept
+  // field (fields[k] in GS_HISTORY_FIELDS order; null where not kept).
+  void arrive(Index first, Index m, const ParticleId* partner, const void* const* fields, const ParticleId* id);
+  // The rows' view of store s.
+  ContactRows rows(const ParticleStore& s) const;
+  // f(index, from, out.name) for each kept history field `name`: its index
+  // in GS_HISTORY_FIELDS, from[source] its array in each ContactSource
+  // (ContactRowValues), and the field of the same name of `out` (host rows,
+  // or anything with the history fields' names).
+  template <class Out, class F>
+  void for_each_field_sources(Out& out, F&& f) const {
+    const PairHistory<Real>& h = st_.pairs;
+    int index = 0;
+#define GS_FIELD_SOURCES(name, value, bit)                                                             \
+  if (st_.kept & (bit)) {                                                                              \
+    const value<Real>* from[4] = {h.current.name.data(), h.carried.name.data(), h.pending.name.data(), \
+                                  st_.history.name.data()};                                            \
+    f(index, from, out.name);                                                                          \
+  }                                                                                                    \
+  ++index;
+    GS_HISTORY_FIELDS(GS_FIELD_SOURCES)
+#undef GS_FIELD_SOURCES
+  }
+
+ private:
+  void detach(const ParticleStore& s);
+
+  StepState<Real>& st_;
+  NeighbourFinder<Exec>& finder_;
+};
+
+// The list still describes the store: its entries become the partners' ids
+// and, with the entries' springs, the carried table.
+template <class Exec, class Real>
+void PairCarry<Exec, Real>::detach(const ParticleStore& s) {
+  PairHistory<Real>& h = st_.pairs;
+  if (!h.attached) return;
+  if (!finder_.list_valid(s)) throw std::logic_error("the store changed behind the pair history's back");
+  h.attached = false;
+  VerletList& v = finder_.verlet();
+  Exec::parallel_for(v.n_owned, ListToIds{v.begin.data(), v.list.data(), s.id.data()});
+  h.carried_begin.swap(v.begin);
+  h.carried_partner.swap(v.list);
+  h.carried.swap(h.current);
+  h.origin.resize(std::size_t(v.n_owned));
+  Exec::parallel_for(v.n_owned, Iota{h.origin.data()});
+  v.valid = false;
+}
+
+template <class Exec, class Real>
+void PairCarry<Exec, Real>::list_built(const ParticleStore& s) {
+  if (!st_.keeps_history()) return;
+  s.observer = this;
+  PairHistory<Real>& h = st_.pairs;
+  const VerletList& v = finder_.verlet();
+  const std::size_t entries = v.list.size();
+  h.current.resize_discarding(entries, st_.kept);
+  const MergeSources sources{v.begin.data(),         v.list.data(),           s.id.data(),
+                             h.origin.data(),        Index(h.origin.size()),  h.carried_begin.data(),
+                             h.carried_partner.data(), h.pending_partner.data(), st_.row_width};
+  Exec::parallel_for(v.n_owned, MergeTouching{sources, h.carried.touching.data(), h.current.touching.data()});
+#define GS_MERGE_FIELD(name, value, bit)                                                         \
+  if (st_.kept & (bit))                                                                          \
+    Exec::parallel_for(v.n_owned, MergeField<value<Real>>{sources, h.carried.name.data(), h.pending.name.data(), \
+                                                          h.current.name.data()});
+  GS_HISTORY_FIELDS(GS_MERGE_FIELD)
+#undef GS_MERGE_FIELD
+  h.carried.free();
+  h.carried_begin = DeviceArray<ListOffset>(Exec::backend);
+  h.carried_partner = DeviceArray<Index>(Exec::backend);
+  h.origin = DeviceArray<Index>(Exec::backend);
+  h.pending_partner = DeviceArray<ParticleId>(Exec::backend);
+  h.pending.free();
+  h.pending_rows = 0;
+  h.attached = true;
+}
+
+template <class Exec, class Real>
+void PairCarry<Exec, Real>::arrive(Index first, Index m, const ParticleId* partner, const void* const* fields,
+                                   const ParticleId* id) {
+  if (!st_.keeps_history() || m == 0) return;
+  PairHistory<Real>& h = st_.pairs;
+  if (h.attached) throw std::logic_error("particles arrived without a change of the store");
+  ensure_origin(first + m);
+  const int width = st_.row_width;
+  const Index row0 = h.pending_rows;
+  h.pending_rows += m;
+  const std::size_t rows = std::size_t(h.pending_rows) * std::size_t(width);
+  h.pending_partner.resize(rows);
+  h.pending.resize(rows, st_.kept);
+  Exec::parallel_for(m, RowsToPending<ParticleId>{partner, h.pending_partner.data(), width, m, row0});
+  int f = 0;
+  for_each_history_field(h.pending, [&](const char*, unsigned bit, auto& a) {
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    if ((st_.kept & bit) && fields[f])
+      Exec::parallel_for(m, RowsToPending<T>{static_cast<const T*>(fields[f]), a.data(), width, m, row0});
+    ++f;
+  });
+  Exec::parallel_for(m, PendingOrigins{h.origin.data(), first, row0});
+  ContactHistory<Real>& surface = st_.history;
+  Exec::parallel_for(m, SurfaceOverflow{h.pending_partner.data(), id, width, surface.slots, row0, first,
+                                        st_.fault.data()});
+  const PendingSurfaces surfaces{h.pending_partner.data(), width, surface.slots, row0, first};
+  Exec::parallel_for(m, PendingPartnersToSurface{surfaces, surface.partner.data(), surface.strides});
+  for_each_history_field(h.pending, surface, [&](const char*, unsigned bit, const auto& from, auto& to) {
+    using T = typename std::decay_t<decltype(to)>::value_type;
+    if (st_.kept & bit)
+      Exec::parallel_for(m, PendingFieldToSurface<T>{surfaces, from.data(), to.data(), surface.strides});
+  });
+}
+
+template <class Exec, class Real>
+ContactRows PairCarry<Exec, Real>::rows(const ParticleStore& s) const {
+  const PairHistory<Real>& h = st_.pairs;
+  const VerletList& v = finder_.verlet();
+  const ContactHistory<Real>& surface = st_.history;
+  ContactRows r{};
+  r.width = st_.row_width;
+  r.attached = h.attached;
+  r.begin = v.begin.data();
+  r.list = v.list.data();
+  r.id = s.id.data();
+  r.current_touching = h.current.touching.data();
+  r.origin = h.origin.data();
+  r.n_origin = Index(h.origin.size());
+  r.carried_begin = h.carried_begin.data();
+  r.carried_partner = h.carried_partner.data();
+  r.carried_touching = h.carried.touching.data();
+  r.pending_partner = h.pending_partner.data();
+  r.surface_partner = surface.partner.data();
+  r.strides = surface.strides;
+  r.surface_slots = surface.slots;
+  return r;
+}
+
+}  // namespace gs

@@ -1,0 +1,399 @@
+#pragma once
+// The particle-pair contact history of one rank and how it follows the
+// Verlet list (contact/pair_springs.hpp says what an entry holds).
+//
+// Attached: `current` holds one entry per entry of the list the neighbour
+// finder holds (the CSR shares the list's offsets).
+// Detached: from the first change of the store after a build (re-sort,
+// migration, removal, insertion, ghosts dropped: ParticleStore::observer)
+// or at the next build, until that build. The old list's entries are turned
+// from store indices into the partners' ids before anything moves, and the
+// old list's offsets, ids and entries become the `carried` table, row r for
+// the particle that was owned particle r then. Each owned particle's
+// `origin` names its row, and moves with the particle (a re-sort or a
+// compaction gathers it as any field); particles that arrive from another
+// rank or from the host (insertion, restart) bring a row of (partner id,
+// springs) as messages and checkpoints hold it (width contact_slots), kept
+// verbatim in `pending` until the build; inserted particles have none.
+// At the build each particle's new entries (ascending partner id) take their
+// springs from its carried row (ascending partner id too: a merge) or its
+// pending row (a search of its few entries); the rest start from zero.
+// The carried and pending tables are then freed.
+//
+// Contacts with walls and mesh features stay in a small slot table per
+// particle (contact/contact_slots.hpp, `surface_slots` of them), which moves
+// with its particle as before. A particle's row for messages, checkpoints
+// and output (ContactRows) lists its touching pairs by ascending partner id,
+// then its surface slots in slot order; a pending row is given back as it
+// came.
+#include <cstddef>
+#include <cstdint>
+#include <type_traits>
+
+#include "backend/device_array.hpp"
+#include "contact/pair_springs.hpp"
+#include "core/fault.hpp"
+#include "core/history_layout.hpp"
+#include "core/particle_fields.hpp"
+#include "neighbor/verlet_list.hpp"
+
+namespace gs {
+
+// origin values: a carried row, kPendingBase + a pending row, or none.
+constexpr Index kNoOrigin = -1;
+constexpr Index kPendingBase = Index(1) << 30;
+
+// One entry per pair: whether it touches, and the history fields the run keeps.
+template <class Real>
+struct PairEntries {
+  DeviceArray<std::uint8_t> touching;
+#define GS_DECLARE_FIELD(name, value, bit) DeviceArray<value<Real>> name;
+  GS_HISTORY_FIELDS(GS_DECLARE_FIELD)
+#undef GS_DECLARE_FIELD
+
+  explicit PairEntries(Backend b) : touching(b) {
+    for_each_history_field(*this, [b](const char*, unsigned, auto& a) { a = std::decay_t<decltype(a)>(b); });
+  }
+  // n entries of the kept fields, contents undefined.
+  void resize_discarding(std::size_t n, unsigned kept) {
+    touching.resize_discarding(n);
+    for_each_history_field(*this, [&](const char*, unsigned bit, auto& a) {
+      if (kept & bit) a.resize_discarding(n);
+    });
+  }
+  void resize(std::size_t n, unsigned kept) {
+    touching.resize(n);
+    for_each_history_field(*this, [&](const char*, unsigned bit, auto& a) {
+      if (kept & bit) a.resize(n);
+    });
+  }
+  void free() {
+    const Backend b = touching.backend();
+    touching = DeviceArray<std::uint8_t>(b);
+    for_each_history_field(*this, [b](const char*, unsigned, auto& a) { a = std::decay_t<decltype(a)>(b); });
+  }
+  void swap(PairEntries& o) {
+    touching.swap(o.touching);
+    for_each_history_field(*this, o, [](const char*, unsigned, auto& a, auto& b) { a.swap(b); });
+  }
+  std::size_t bytes() const {
+    std::size_t total = touching.bytes();
+    for_each_history_field(*this, [&](const char*, unsigned, const auto& a) { total += a.bytes(); });
+    return total;
+  }
+  template <unsigned Kept>
+  PairSprings<Real, Kept> view() {
+    PairSprings<Real, Kept> v;
+    v.touching = touching.data();
+#define GS_POINT_AT_FIELD(name, value, bit) v.name = name.data();
+    GS_HISTORY_FIELDS(GS_POINT_AT_FIELD)
+#undef GS_POINT_AT_FIELD
+    return v;
+  }
+};
+
+template <class Real>
+struct PairHistory {
+  explicit PairHistory(Backend b)
+      : current(b), carried_begin(b), carried_partner(b), carried(b), origin(b), pending_partner(b), pending(b) {}
+
+  bool attached = false;         // current follows the finder's list
+  PairEntries<Real> current;     // per list entry
+  // Detached (see the top):
+  DeviceArray<ListOffset> carried_begin;  // per carried row + 1
+  DeviceArray<Index> carried_partner;     // partner ids (as Index bits), ascending in each row
+  PairEntries<Real> carried;
+  DeviceArray<Index> origin;              // per owned particle (missing at the end: none)
+  DeviceArray<ParticleId> pending_partner;  // rows of `width` entries
+  PairEntries<Real> pending;                // the same rows' fields (touching unused)
+  Index pending_rows = 0;
+
+  std::size_t bytes() const {
+    return current.bytes() + carried_begin.bytes() + carried_partner.bytes() + carried.bytes() + origin.bytes() +
+           pending_partner.bytes() + pending.bytes();
+  }
+};
+
+// The old list's entries of owned particle i, from store indices to ids.
+struct ListToIds {
+  const ListOffset* begin;
+  Index* list;
+  const ParticleId* id;
+  GS_HD void operator()(Index i) const {
+    for (ListOffset k = begin[i]; k < begin[i + 1]; ++k) list[k] = static_cast<Index>(id[list[k]]);
+  }
+};
+
+struct Iota {
+  Index* to;
+  GS_HD void operator()(Index i) const { to[i] = i; }
+};
+
+template <class T>
+struct Fill {
+  T* to;
+  T value;
+  GS_HD void operator()(Index i) const { to[i] = value; }
+};
+
+// Where each new list entry of owned particle i finds its springs: f(k,
+// source, at) with source 0 (none: zero springs), 1 (carried entry `at`) or
+// 2 (pending entry `at`).
+struct MergeSources {
+  const ListOffset* begin;
+  const Index* list;
+  const ParticleId* id;
+  const Index* origin;
+  Index n_origin;
+  const ListOffset* carried_begin;
+  const Index* carried_partner;
+  const ParticleId* pending_partner;
+  int width;
+  template <class F>
+  GS_HD void for_each(Index i, const F& f) const {
+    const Index o = i < n_origin ? origin[i] : kNoOrigin;
+    ListOffset c = 0, c_end = 0;
+    if (o >= 0 && o < kPendingBase) c = carried_begin[o], c_end = carried_begin[o + 1];
+    for (ListOffset k = begin[i]; k < begin[i + 1]; ++k) {
+      const ParticleId partner = id[list[k]];
+      if (o >= kPendingBase) {
+        const std::size_t row = std::size_t(o - kPendingBase) * std::size_t(width);
+        int s = 0;
+        while (s < width && pending_partner[row + std::size_t(s)] != partner) ++s;
+        if (s < width) f(k, 2, row + std::size_t(s));
+        else f(k, 0, std::size_t(0));
+      } else {
+        while (c < c_end && static_cast<ParticleId>(carried_partner[c]) < partner) ++c;
+        if (c < c_end && static_cast<ParticleId>(carried_partner[c]) == partner) f(k, 1, std::size_t(c));
+        else f(k, 0, std::size_t(0));
+      }
+    }
+  }
+};
+
+template <class T>
+struct MergeField {
+  MergeSources sources;
+  const T* carried;
+  const T* pending;
+  T* to;
+  GS_HD void operator()(Index i) const {
+    sources.for_each(i, [&](ListOffset k, int source, std::size_t at) {
+      to[k] = source == 1 ? carried[at] : source == 2 ? pending[at] : T{};
+    });
+  }
+};
+
+struct MergeTouching {
+  MergeSources sources;
+  const std::uint8_t* carried;
+  std::uint8_t* to;
+  GS_HD void operator()(Index i) const {
+    sources.for_each(i, [&](ListOffset k, int source, std::size_t at) {
+      to[k] = source == 1 ? carried[at] : source == 2 ? std::uint8_t(1) : std::uint8_t(0);
+    });
+  }
+};
+
+// Where a row's entries come from.
+enum ContactSource : int { kFromCurrent = 0, kFromCarried = 1, kFromPending = 2, kFromSurface = 3 };
+
+// The contacts of owned particle i as one row of `width` entries: f(r,
+// source, at, partner) for entry r < width. Returns how many contacts there
+// are (more than width: those beyond are not visited). A pending row is
+// visited whole, empty entries included, as it arrived.
+struct ContactRows {
+  int width;
+  bool attached;
+  // attached: the list and its entries' flags
+  const ListOffset* begin;
+  const Index* list;
+  const ParticleId* id;
+  const std::uint8_t* current_touching;
+  // detached
+  const Index* origin;
+  Index n_origin;
+  const ListOffset* carried_begin;
+  const Index* carried_partner;
+  const std::uint8_t* carried_touching;
+  const ParticleId* pending_partner;
+  // walls and mesh features
+  const ParticleId* surface_partner;
+  HistoryStrides strides;
+  int surface_slots;
+
+  template <class F>
+  GS_HD int for_each(Index i, const F& f) const {
+    int r = 0;
+    auto put = [&](int source, std::size_t at, ParticleId partner) {
+      if (r < width) f(r, source, at, partner);
+      ++r;
+    };
+    if (attached) {
+      for (ListOffset k = begin[i]; k < begin[i + 1]; ++k)
+        if (current_touching[k]) put(kFromCurrent, std::size_t(k), id[list[k]]);
+    } else {
+      const Index o = i < n_origin ? origin[i] : kNoOrigin;
+      if (o >= kPendingBase) {
+        const std::size_t row = std::size_t(o - kPendingBase) * std::size_t(width);
+        int n = 0;
+        for (int s = 0; s < width; ++s) {
+          const ParticleId p = pending_partner[row + std::size_t(s)];
+          f(s, kFromPending, row + std::size_t(s), p);
+          n += p != kNoPartner;
+        }
+        return n;
+      }
+      if (o >= 0)
+        for (ListOffset c = carried_begin[o]; c < carried_begin[o + 1]; ++c)
+          if (carried_touching[c]) put(kFromCarried, std::size_t(c), static_cast<ParticleId>(carried_partner[c]));
+    }
+    for (int s = 0; s < surface_slots; ++s) {
+      const std::size_t at = strides.at(s, std::size_t(i));
+      if (surface_partner[at] != kNoPartner) put(kFromSurface, at, surface_partner[at]);
+    }
+    return r;
+  }
+};
+
+// Rows of field T of particles which[k] (or order[first + k], or first + k
+// where both are null), in the host's or message's type U: row-major rows
+// of `width` (to[k * width + r]) or a packed slot-major block of m
+// (to[r * m + k]). from[source]: the field's array of each source.
+template <class T, class U>
+struct ContactRowValues {
+  ContactRows rows;
+  const T* from[4];
+  U* to;
+  const Index* order;
+  Index first, m;
+  bool slot_major;
+  GS_HD void operator()(Index k) const {
+    const Index i = order ? order[first + k] : first + k;
+    auto at = [&](int r) -> U& {
+      return slot_major ? to[std::size_t(r) * std::size_t(m) + std::size_t(k)]
+                        : to[std::size_t(k) * std::size_t(rows.width) + std::size_t(r)];
+    };
+    for (int r = 0; r < rows.width; ++r) at(r) = U{};
+    rows.for_each(i, [&](int r, int source, std::size_t e, ParticleId) { at(r) = U(from[source][e]); });
+  }
+};
+
+// The partner ids of the same rows (kNoPartner where empty); a particle with
+// more contacts than the row holds is a fault (contact_slots).
+struct ContactRowPartners {
+  ContactRows rows;
+  ParticleId* to;
+  const Index* order;
+  Index first, m;
+  bool slot_major;
+  const ParticleId* id;
+  Fault* fault;
+  GS_HD void operator()(Index k) const {
+    const Index i = order ? order[first + k] : first + k;
+    auto at = [&](int r) -> ParticleId& {
+      return slot_major ? to[std::size_t(r) * std::size_t(m) + std::size_t(k)]
+                        : to[std::size_t(k) * std::size_t(rows.width) + std::size_t(r)];
+    };
+    for (int r = 0; r < rows.width; ++r) at(r) = kNoPartner;
+    const int n = rows.for_each(i, [&](int r, int, std::size_t, ParticleId partner) { at(r) = partner; });
+    if (n > rows.width) report_fault(fault, kFaultSlotsExhausted, id[i], -1);
+  }
+};
+
+// Contacts of particle order[first + k] (or first + k), at count[k].
+struct CountRowContacts {
+  ContactRows rows;
+  const Index* order;
+  Index first;
+  std::uint16_t* count;
+  GS_HD void operator()(Index k) const {
+    const Index i = order ? order[first + k] : first + k;
+    count[k] = std::uint16_t(rows.for_each(i, [](int, int, std::size_t, ParticleId) {}));
+  }
+};
+
+// Arrivals [first, first + m) have pending rows [row0, row0 + m).
+struct PendingOrigins {
+  Index* origin;
+  Index first, row0;
+  GS_HD void operator()(Index k) const { origin[first + k] = kPendingBase + row0 + k; }
+};
+
+// Arriving rows: a packed slot-major block of m rows of `width` into pending
+// rows [row0, row0 + m).
+template <class T>
+struct RowsToPending {
+  const T* from;
+  T* to;
+  int width;
+  Index m, row0;
+  GS_HD void operator()(Index k) const {
+    for (int s = 0; s < width; ++s)
+      to[(std::size_t(row0) + std::size_t(k)) * std::size_t(width) + std::size_t(s)] =
+          from[std::size_t(s) * std::size_t(m) + std::size_t(k)];
+  }
+};
+
+// The surface contacts (walls, mesh features) of pending row row0 + k into
+// the slot table of particle first + k, in row order: f(slot, row entry).
+struct PendingSurfaces {
+  const ParticleId* partner;  // pending rows
+  int width, slots;
+  Index row0, first;
+  template <class F>
+  GS_HD int for_each(Index k, const F& f) const {
+    const std::size_t row = (std::size_t(row0) + std::size_t(k)) * std::size_t(width);
+    int n = 0;
+    for (int s = 0; s < width && n < slots; ++s) {
+      const ParticleId p = partner[row + std::size_t(s)];
+      if (p != kNoPartner && p >= kMeshPartnerBase) f(n++, row + std::size_t(s));
+    }
+    return n;
+  }
+};
+
+// Their partner ids, the other slots free.
+struct PendingPartnersToSurface {
+  PendingSurfaces rows;
+  ParticleId* to;
+  HistoryStrides strides;
+  GS_HD void operator()(Index k) const {
+    const std::size_t i = std::size_t(rows.first) + std::size_t(k);
+    int n = rows.for_each(k, [&](int s, std::size_t e) { to[strides.at(s, i)] = rows.partner[e]; });
+    for (; n < rows.slots; ++n) to[strides.at(n, i)] = kNoPartner;
+  }
+};
+
+// Their values of one field.
+template <class T>
+struct PendingFieldToSurface {
+  PendingSurfaces rows;
+  const T* from;
+  T* to;
+  HistoryStrides strides;
+  GS_HD void operator()(Index k) const {
+    const std::size_t i = std::size_t(rows.first) + std::size_t(k);
+    rows.for_each(k, [&](int s, std::size_t e) { to[strides.at(s, i)] = from[e]; });
+  }
+};
+
+// Whether pending row row0 + k holds more surface contacts than `slots`.
+struct SurfaceOverflow {
+  const ParticleId* partner;
+  const ParticleId* id;  // of the arriving particles, at first + k
+  int width, slots;
+  Index row0, first;
+  Fault* fault;
+  GS_HD void operator()(Index k) const {
+    const std::size_t row = (std::size_t(row0) + std::size_t(k)) * std::size_t(width);
+    int n = 0;
+    for (int s = 0; s < width; ++s) {
+      const ParticleId p = partner[row + std::size_t(s)];
+      n += p != kNoPartner && p >= kMeshPartnerBase;
+    }
+    if (n > slots) report_fault(fault, kFaultSurfaceSlotsExhausted, id[first + k], -1);
+  }
+};
+
+}  // namespace gs
