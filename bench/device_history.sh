@@ -38,15 +38,8 @@ base=${1:-}
 say() { echo "[$(date -u +%T) +${SECONDS}s] $*" | tee -a "$log"; }
 left() { echo $((budget - SECONDS)); }
 
-if [[ -d carry/root/usr ]]; then
-  export CMAKE_PREFIX_PATH=$root/carry/root/usr
-  export LD_LIBRARY_PATH=$root/carry/root/usr/lib/x86_64-linux-gnu:${LD_LIBRARY_PATH:-}
-  extra=(-DMETIS_INCLUDE_DIR=$root/carry/root/usr/include
-         -DMETIS_LIBRARY=$root/carry/root/usr/lib/x86_64-linux-gnu/libmetis.so)
-else
-  extra=()
-fi
-export PATH=/usr/local/cuda/bin:$PATH
+source "$root/bench/carried_deps.sh"
+use_carried_deps "$root"
 {
   date -u; nvidia-smi --query-gpu=name,memory.total,driver_version --format=csv; nproc
   git rev-parse HEAD 2>/dev/null; git status --short 2>/dev/null | head -20

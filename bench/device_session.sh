@@ -13,15 +13,8 @@ what=${1:-all}
 root=$(pwd)
 OUT=${OUT:-$root/device_out}
 mkdir -p "$OUT"
-if [[ -d carry/root/usr ]]; then
-  export CMAKE_PREFIX_PATH=$root/carry/root/usr
-  export LD_LIBRARY_PATH=$root/carry/root/usr/lib/x86_64-linux-gnu:${LD_LIBRARY_PATH:-}
-  extra=(-DMETIS_INCLUDE_DIR=$root/carry/root/usr/include
-         -DMETIS_LIBRARY=$root/carry/root/usr/lib/x86_64-linux-gnu/libmetis.so)
-else
-  extra=()
-fi
-export PATH=/usr/local/cuda/bin:$PATH
+source "$root/bench/carried_deps.sh"
+use_carried_deps "$root"
 log=$OUT/session.log
 {
   date -u; nvidia-smi --query-gpu=name,memory.total,driver_version --format=csv; git rev-parse HEAD 2>/dev/null
