@@ -46,21 +46,16 @@ scenes=$(cd "$campaign" && ls *.yaml 2>/dev/null | sort)
 mkdir -p "$out"
 
 # The build, when the binary is not there yet (a fresh device machine).
+source "$root/bench/carried_deps.sh"
+use_carried_deps "$root"
 gs=$build/src/grainstorm
 if [[ ! -x $gs ]]; then
-  extra=()
-  if [[ -d carry/root/usr ]]; then
-    export CMAKE_PREFIX_PATH=$root/carry/root/usr
-    extra=(-DMETIS_INCLUDE_DIR=$root/carry/root/usr/include
-           -DMETIS_LIBRARY=$root/carry/root/usr/lib/x86_64-linux-gnu/libmetis.so)
-  fi
-  cuda=OFF; [[ $backend == cuda ]] && cuda=ON && export PATH=/usr/local/cuda/bin:$PATH
+  cuda=OFF; [[ $backend == cuda ]] && cuda=ON
   { cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGS_ENABLE_CUDA=$cuda "${extra[@]}" &&
     cmake --build "$build" -j "$(nproc)" --target grainstorm; } > "$out/build.log" 2>&1 ||
     { tail -40 "$out/build.log"; exit 1; }
   echo "build: $(elapsed) s"
 fi
-[[ -d carry/root/usr ]] && export LD_LIBRARY_PATH=$root/carry/root/usr/lib/x86_64-linux-gnu:${LD_LIBRARY_PATH:-}
 gs=$(realpath "$gs")
 
 work=${WORK:-$(mktemp -d /tmp/mixer_campaign.XXXXXX)}

@@ -12,18 +12,12 @@ OUT=${OUT:-$root/device_out}
 runs=${RUNS:-/tmp/mixruns}
 mkdir -p "$OUT" "$runs"
 start=$(date +%s)
+source "$root/bench/carried_deps.sh"
+use_carried_deps "$root"
 if [[ ! -x build-gpu/src/grainstorm ]]; then
-  extra=()
-  if [[ -d carry/root/usr ]]; then
-    export CMAKE_PREFIX_PATH=$root/carry/root/usr
-    extra=(-DMETIS_INCLUDE_DIR=$root/carry/root/usr/include
-           -DMETIS_LIBRARY=$root/carry/root/usr/lib/x86_64-linux-gnu/libmetis.so)
-  fi
-  export PATH=/usr/local/cuda/bin:$PATH
   { cmake -S . -B build-gpu -DCMAKE_BUILD_TYPE=Release -DGS_ENABLE_CUDA=ON "${extra[@]}" &&
     cmake --build build-gpu -j 16 --target grainstorm; } > "$runs/build.log" 2>&1 || { tail -40 "$runs/build.log"; exit 1; }
 fi
-[[ -d carry/root/usr ]] && export LD_LIBRARY_PATH=$root/carry/root/usr/lib/x86_64-linux-gnu:${LD_LIBRARY_PATH:-}
 left=$((limit - ($(date +%s) - start) - 40))
 echo "build took $(($(date +%s) - start)) s; running for $left s"
 for scene in "$@"; do

@@ -8,6 +8,7 @@
 #   validation_finish RESULTS STATUS      appends the runs' plan and ends to RESULTS, prints it, exits STATUS
 
 source "$(dirname "${BASH_SOURCE[0]}")/mps.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/carried_deps.sh"
 
 validation_log() { echo "[$(date -u +%H:%M:%S) +$(( $(date +%s) - t_start ))s] $case_name: $*" >&2; }
 
@@ -28,19 +29,12 @@ validation_setup() {
     if command -v "$candidate" >/dev/null && "$candidate" -c "import matplotlib" 2>/dev/null; then python=$candidate; break; fi
   done
   validation_log "budget ${budget} s, backend $backend, size $size, python $python"
+  use_carried_deps "$root"  # also for a binary built before, which may link the carried libraries
   if [[ ! -x $binary ]]; then
     # Built here when missing (the budget pays for it): only the grainstorm target.
     validation_log "no $binary: building it (cmake, the grainstorm target only)"
-    local extra=()
-    if [[ -d $root/carry/root/usr ]]; then
-      export CMAKE_PREFIX_PATH=$root/carry/root/usr
-      export LD_LIBRARY_PATH=$root/carry/root/usr/lib/x86_64-linux-gnu:${LD_LIBRARY_PATH:-}
-      extra=(-DMETIS_INCLUDE_DIR=$root/carry/root/usr/include
-             -DMETIS_LIBRARY=$root/carry/root/usr/lib/x86_64-linux-gnu/libmetis.so)
-    fi
     local cuda=ON
     [[ $backend == cpu ]] && cuda=OFF
-    export PATH=/usr/local/cuda/bin:$PATH
     if ! { cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DGS_ENABLE_CUDA=$cuda "${extra[@]}" &&
            cmake --build "$build_dir" -j "$(nproc)" --target grainstorm; } > "$out/build.log" 2>&1; then
       tail -30 "$out/build.log" >&2
