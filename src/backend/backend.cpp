@@ -53,9 +53,23 @@ unsigned gpu_wait_flags() {
   throw std::invalid_argument("GRAINSTORM_GPU_WAIT must be spin, yield or block, got '" + mode + "'");
 }
 
+int force_lanes(long long n) {
+  const char* v = std::getenv("GRAINSTORM_FORCE_LANES");
+  if (v && *v && std::string(v) != "auto") {
+    const std::string s(v);
+    for (int lanes = 1; lanes <= kMaxForceLanes; lanes *= 2)
+      if (s == std::to_string(lanes)) return lanes;
+    throw std::invalid_argument("GRAINSTORM_FORCE_LANES must be auto, 1, 2, 4, 8, 16 or 32, got '" + s + "'");
+  }
+  int lanes = 1;
+  while (lanes < kMaxForceLanes && n * lanes * 2 <= kForceLaneThreads) lanes *= 2;
+  return lanes;
+}
+
 bool select_cuda_device(int local_rank) {
 #ifdef GS_HAVE_CUDA
   const unsigned wait = gpu_wait_flags();
+  force_lanes(0);  // an unknown setting fails here, not at the first step
   int count = 0;
   GS_CUDA_CHECK(cudaGetDeviceCount(&count));
   if (count == 0) throw std::runtime_error("no CUDA device to bind local rank " + std::to_string(local_rank) + " to");

@@ -18,6 +18,14 @@ Backend default_backend();     // cuda when a device is available, else cpu
 // unknown value throws std::invalid_argument naming the variable.
 bool select_cuda_device(int local_rank);
 unsigned gpu_wait_flags();  // GRAINSTORM_GPU_WAIT as CUDA device flags; 0 where unset
+// GPU lanes per particle in the force computation (backend/cuda/lane_group.cuh):
+// GRAINSTORM_FORCE_LANES (1, 2, 4, 8, 16 or 32), else as many as keep a scene
+// of n particles under kForceLaneThreads threads (1 for a scene that fills
+// the GPU with a thread each). Any other value throws std::invalid_argument
+// naming the variable; select_cuda_device checks it at the start.
+constexpr long long kForceLaneThreads = 1 << 17;
+constexpr int kMaxForceLanes = 32;
+int force_lanes(long long n);
 
 // The host threads this process runs its OpenMP loops on (OMP_NUM_THREADS or
 // the default), and the cores its CPU affinity lets them use. mpirun binds

@@ -30,6 +30,26 @@ GS_HD GS_INLINE double mul_add(double a, double b, double c) {
 #endif
 }
 
+// a + b rounded on its own, never fused with a product that feeds it (nvcc
+// fuses where the source does not forbid it). A particle's force sum adds
+// with it, so that the sum has the same bits whether the thread computed each
+// contact itself or received it from another lane of its group
+// (engine/force_group.hpp). The host never fuses on its own.
+GS_HD GS_INLINE float add_rounded(float a, float b) {
+#if defined(__CUDA_ARCH__)
+  return __fadd_rn(a, b);
+#else
+  return a + b;
+#endif
+}
+GS_HD GS_INLINE double add_rounded(double a, double b) {
+#if defined(__CUDA_ARCH__)
+  return __dadd_rn(a, b);
+#else
+  return a + b;
+#endif
+}
+
 // A small 3-vector usable in host and device code. T is float or double.
 template <class T>
 struct Vec3 {
@@ -62,6 +82,9 @@ template <class T> GS_HD GS_INLINE Vec3<T> cross(const Vec3<T>& a, const Vec3<T>
 // a * s + c, component by component.
 template <class T> GS_HD GS_INLINE Vec3<T> mul_add(const Vec3<T>& a, T s, const Vec3<T>& c) {
   return Vec3<T>(mul_add(a.x, s, c.x), mul_add(a.y, s, c.y), mul_add(a.z, s, c.z));
+}
+template <class T> GS_HD GS_INLINE Vec3<T> add_rounded(const Vec3<T>& a, const Vec3<T>& b) {
+  return Vec3<T>(add_rounded(a.x, b.x), add_rounded(a.y, b.y), add_rounded(a.z, b.z));
 }
 template <class T> GS_HD GS_INLINE T norm2(const Vec3<T>& a) { return dot(a, a); }
 template <class T> GS_HD GS_INLINE T norm(const Vec3<T>& a) { return std::sqrt(dot(a, a)); }

@@ -1,7 +1,9 @@
 #pragma once
 // ForceComputation over an execution policy, force precision, contact model
 // and set of effects: one ForceKernel thread per owned particle
-// (engine/force_kernel.hpp) over the neighbours of the run's NeighbourFinder.
+// (engine/force_kernel.hpp), or on a GPU a group of lanes per particle in a
+// scene too small to fill it, over the neighbours of the run's NeighbourFinder.
+#include <type_traits>
 #include <vector>
 
 #include "engine/contact_measure_kernel.hpp"
@@ -54,7 +56,12 @@ class ForceComputer final : public ForceComputation {
 
   void compute(ParticleStore& s, double dt, long long step) override {
     meshes_.reserve(std::size_t(s.size()));
-    with_candidates(s, [&](const auto& candidates) { Exec::parallel_for(s.n_owned, kernel(s, candidates, dt, step)); });
+    with_candidates(s, [&](const auto& candidates) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(candidates)>, ListCandidates>)
+        Exec::parallel_for_lanes(s.n_owned, kernel(s, candidates, dt, step));
+      else
+        Exec::parallel_for(s.n_owned, kernel(s, candidates, dt, step));
+    });
   }
 
   void measure_contacts(ParticleStore& s, long long step) override {

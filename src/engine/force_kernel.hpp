@@ -5,13 +5,19 @@
 // partners in the order the candidate source gives them (CellCandidates:
 // cell by cell in a fixed order, by ascending id in a cell; ListCandidates:
 // by ascending id), then the walls in scene order, then triangle meshes, their
-// contacts in ascending triangle order of the particle's mesh bin.
+// contacts in ascending triangle order of the particle's mesh bin. On a GPU
+// a small scene gives each particle a group of lanes instead (in_group): the
+// same contacts, added in the same order, so the same bits.
+#include <type_traits>
+
 #include "contact/contact_models.hpp"
 #include "contact/contact_slots.hpp"
+#include "core/bits.hpp"
 #include "contact/pair_springs.hpp"
 #include "neighbor/cell_list.hpp"
 #include "neighbor/verlet_list.hpp"
 #include "walls/sphere_triangle.hpp"
+#include "walls/sphere_triangle_group.hpp"
 #include "walls/wall_geometry.hpp"
 #include "walls/wall_screen.hpp"
 
@@ -96,14 +102,51 @@ struct ForceKernel {
       if (wall_may_touch(wall_screens[w], xi, ri)) add_wall_contact(i, w, xi, total, touched);
     // One uniform branch per particle when the scene has no mesh (docs/MESHES.md, cost).
     if (meshes.n_triangles > 0) add_mesh_contacts(i, xi, total, touched);
-    if constexpr (kHistory) {
-      surface_history.release_untouched(i, touched);
-      // A row of contact_slots must hold them all when the particle migrates or is checkpointed.
-      if (pairs_touching + bit_count(touched) > contact_slots) report_fault(fault, kFaultSlotsExhausted, id[i], step);
-    }
-    force[i] = total.force;
-    if constexpr (kTorque) torque[i] = total.torque;
+    finish(i, total, touched, pairs_touching);
   }
+
+#if defined(__CUDACC__)
+  // The same as operator(), by a group of g.size GPU lanes
+  // (backend/cuda/lane_group.cuh): lane r computes the contacts of list
+  // entries r, r + g.size, ...; every lane then adds the touching ones in
+  // list order, the additions of operator()'s loop one for one, so that the
+  // force has the same bits. The lanes scan the mesh's triangles together;
+  // lane 0 alone adds the walls and the mesh contacts, keeps their history
+  // and writes the result. For scenes too small to fill the GPU with one
+  // thread per particle, whose step lasts as long as the longest particle.
+  template <class Group>
+  __device__ void in_group(Index i, const Group& g) const {
+    static_assert(std::is_same_v<Candidates, ListCandidates>, "lanes share out a particle's Verlet list entries");
+    ContactLoad<Real> total;
+    int pairs_touching = 0;
+    const Vec3d xi = position[i];
+    const ListOffset end = candidates.begin[i + 1];
+    for (ListOffset first = candidates.begin[i]; first < end; first += ListOffset(g.size)) {
+      const ListOffset k = first + ListOffset(g.rank);
+      ContactLoad<Real> load;
+      bool touching = false;
+      if (k < end && candidates.list[k] != i) touching = particle_contact(i, candidates.list[k], k, xi, load);
+      unsigned touched = g.ballot(touching);
+      pairs_touching += bit_count(touched);
+      for (; touched != 0; touched &= touched - 1) add_to(total, shuffled(g, load, lowest_bit(touched)));
+    }
+    unsigned touched = 0;
+    if (g.leader()) {
+      const double ri = radius[i];
+      for (int w = 0; w < n_walls; ++w)
+        if (wall_may_touch(wall_screens[w], xi, ri)) add_wall_contact(i, w, xi, total, touched);
+    }
+    if (meshes.n_triangles > 0) {
+      MeshContact waiting[kWaitingMeshContacts];
+      int n_waiting = 0;
+      if (g.leader()) clear_mesh_load(i);
+      MeshContactVisitor visit{this, i, xi, &total, &touched, waiting, &n_waiting};
+      for_each_mesh_contact_in_group(meshes, xi, double(radius[i]), g, visit);  // visits on lane 0 only
+      if (g.leader()) add_waiting_mesh_contacts(i, xi, waiting, n_waiting, total, touched);
+    }
+    if (g.leader()) finish(i, total, touched, pairs_touching);
+  }
+#endif
 
   // Whether particles i (at xi) and j overlap, and if so the kinematics of
   // their contact as seen from i. Public for the measurements' contact pass
@@ -167,13 +210,33 @@ struct ForceKernel {
     }
   };
 
-  GS_HD GS_INLINE static int bit_count(unsigned v) {
-#if defined(__CUDA_ARCH__)
-    return __popc(v);
-#else
-    return __builtin_popcount(v);
-#endif
+  // Releases the surface slots no contact touched, checks the row, writes the sums.
+  GS_HD GS_INLINE void finish(Index i, const ContactLoad<Real>& total, unsigned touched, int pairs_touching) const {
+    if constexpr (kHistory) {
+      surface_history.release_untouched(i, touched);
+      // A row of contact_slots must hold them all when the particle migrates or is checkpointed.
+      if (pairs_touching + bit_count(touched) > contact_slots) report_fault(fault, kFaultSlotsExhausted, id[i], step);
+    }
+    force[i] = total.force;
+    if constexpr (kTorque) torque[i] = total.torque;
   }
+
+  // total += load, each sum rounded on its own (core/vec3.hpp: add_rounded).
+  GS_HD GS_INLINE static void add_to(ContactLoad<Real>& total, const ContactLoad<Real>& load) {
+    total.force = add_rounded(total.force, load.force);
+    if constexpr (kTorque) total.torque = add_rounded(total.torque, load.torque);
+  }
+
+#if defined(__CUDACC__)
+  // Lane `lane`'s load, on every lane of the group.
+  template <class Group>
+  __device__ static ContactLoad<Real> shuffled(const Group& g, const ContactLoad<Real>& v, int lane) {
+    ContactLoad<Real> r;
+    r.force = g.shuffle(v.force, lane);
+    if constexpr (kTorque) r.torque = g.shuffle(v.torque, lane);
+    return r;
+  }
+#endif
 
   // Visitor of for_each_mesh_contact: one mesh contact of particle i. A
   // contact whose feature already has a history slot is applied at once; a
@@ -203,12 +266,22 @@ struct ForceKernel {
   };
 
   GS_HD void add_mesh_contacts(Index i, const Vec3d& xi, ContactLoad<Real>& total, unsigned& touched) const {
-    if (mesh_load)
-      for (int m = 0; m < meshes.n_meshes; ++m) mesh_load[std::size_t(i) * meshes.n_meshes + m] = MeshLoad{};
+    clear_mesh_load(i);
     MeshContact waiting[kWaitingMeshContacts];
     int n_waiting = 0;
     MeshContactVisitor visit{this, i, xi, &total, &touched, waiting, &n_waiting};
     for_each_mesh_contact(meshes, xi, double(radius[i]), visit);
+    add_waiting_mesh_contacts(i, xi, waiting, n_waiting, total, touched);
+  }
+
+  GS_HD GS_INLINE void clear_mesh_load(Index i) const {
+    if (mesh_load)
+      for (int m = 0; m < meshes.n_meshes; ++m) mesh_load[std::size_t(i) * meshes.n_meshes + m] = MeshLoad{};
+  }
+
+  // The mesh contacts that found no slot of their own, once the others have taken theirs.
+  GS_HD void add_waiting_mesh_contacts(Index i, const Vec3d& xi, const MeshContact* waiting, int n_waiting,
+                                       ContactLoad<Real>& total, unsigned& touched) const {
     for (int k = 0; k < n_waiting; ++k) {
       const MeshContact& c = waiting[k];
       const int slot = surface_history.inherit(i, mesh_partner_id(c.feature_key), touched, SameMeshContact{&meshes, c.feature_key});
@@ -241,18 +314,26 @@ struct ForceKernel {
   // where they touch; else the entry is released (the contact has ended).
   GS_HD GS_INLINE int add_particle_contact(Index i, Index j, ListOffset entry, const Vec3d& xi,
                                            ContactLoad<Real>& total) const {
+    ContactLoad<Real> load;
+    if (!particle_contact(i, j, entry, xi, load)) return 0;
+    add_to(total, load);
+    return 1;
+  }
+
+  // The load of the pair (i, j) of list entry `entry` on i, and true, where
+  // they touch; else false, and the entry's springs are released.
+  GS_HD GS_INLINE bool particle_contact(Index i, Index j, ListOffset entry, const Vec3d& xi,
+                                        ContactLoad<Real>& load) const {
     ContactKinematics<Real> k;
     if (!particle_kinematics(i, j, xi, k)) {
       if constexpr (kHistory) pair_history.release(entry);
-      return 0;
+      return false;
     }
     ContactState<Real> state;
     if constexpr (kHistory) state = pair_history.load(entry);
-    const ContactLoad<Real> load = contact_load<Real, Model, Effects>(pairs(material[i], material[j]), k, state, dt);
+    load = contact_load<Real, Model, Effects>(pairs(material[i], material[j]), k, state, dt);
     if constexpr (kHistory) pair_history.store(entry, state);
-    total.force += load.force;
-    if constexpr (kTorque) total.torque += load.torque;
-    return 1;
+    return true;
   }
 
   GS_HD void add_wall_contact(Index i, int w, const Vec3d& xi, ContactLoad<Real>& total, unsigned& touched) const {
@@ -281,8 +362,7 @@ struct ForceKernel {
     if constexpr (kHistory) {
       if (slot >= 0) surface_history.store(i, slot, state);
     }
-    total.force += load.force;
-    if constexpr (kTorque) total.torque += load.torque;
+    add_to(total, load);
     return load;
   }
 };

@@ -261,14 +261,42 @@ GS_HD GS_INLINE bool keep_mesh_report(const MeshView& m, const std::int32_t* lis
 }
 }  // namespace detail
 
-// Calls visit(const MeshContact&) for each contact of the sphere (x, radius)
-// with the triangles list[0..count), which must hold, ascending, every
-// triangle within `radius` of x (a cell's list from bin_triangles does).
-// Contacts come in ascending triangle order.
 // How many triangles within reach for_each_mesh_contact_in lists apart; with
 // more in reach it scans the whole cell list.
 constexpr int kMeshInReachCap = 16;
 
+// Whether triangle t of list[0..count) reports a contact of the sphere (x,
+// radius), r being its closest point: within reach, with a normal, and not
+// made redundant by another report (the rule at the top of this file).
+GS_HD GS_INLINE bool mesh_report_kept(const MeshView& m, const std::int32_t* list, std::int32_t count,
+                                      const Vec3d& x, double radius, double tol2, std::int32_t t,
+                                      const ClosestPoint& r) {
+  if (!(r.distance < radius)) return false;
+  if (r.feature != kFace && !(r.distance > 0)) return false;  // centre on an edge or corner: no normal
+  return detail::keep_mesh_report(m, list, count, x, radius, tol2, t, r);
+}
+
+// The contact that triangle t reports at its closest point r to the sphere
+// (x, radius), a report mesh_report_kept keeps.
+GS_HD GS_INLINE MeshContact mesh_contact(const MeshView& m, std::int32_t t, const ClosestPoint& r, const Vec3d& x,
+                                         double radius) {
+  MeshContact c;
+  c.normal = contact_normal(m, t, r, x);
+  c.triangle = t;
+  c.feature = r.feature;
+  c.mesh = m.mesh ? m.mesh[t] : 0;
+  c.feature_key = mesh_feature_key(m, t, r.feature);
+  c.overlap = radius - r.distance;
+  c.point = r.point;
+  c.wall_velocity = m.pose ? mesh_point_velocity(m.pose[c.mesh], r.point) : Vec3d();
+  return c;
+}
+
+// Calls visit(const MeshContact&) for each contact of the sphere (x, radius)
+// with the triangles list[0..count), which must hold, ascending, every
+// triangle within `radius` of x (a cell's list from bin_triangles does).
+// Contacts come in ascending triangle order. (engine/force_group.hpp does
+// the same with a group of GPU lanes; keep the two in step.)
 template <class Visitor>
 GS_HD void for_each_mesh_contact_in(const MeshView& m, const std::int32_t* list, std::int32_t count, const Vec3d& x,
                                     double radius, Visitor& visit) {
@@ -294,19 +322,7 @@ GS_HD void for_each_mesh_contact_in(const MeshView& m, const std::int32_t* list,
   for (std::int32_t k = 0; k < count; ++k) {
     const std::int32_t t = list[k];
     const ClosestPoint r = triangle_closest_point(m, t, x);
-    if (!(r.distance < radius)) continue;
-    if (r.feature != kFace && !(r.distance > 0)) continue;  // centre on an edge or corner: no normal
-    if (!detail::keep_mesh_report(m, list, count, x, radius, tol2, t, r)) continue;
-    MeshContact c;
-    c.normal = contact_normal(m, t, r, x);
-    c.triangle = t;
-    c.feature = r.feature;
-    c.mesh = m.mesh ? m.mesh[t] : 0;
-    c.feature_key = mesh_feature_key(m, t, r.feature);
-    c.overlap = radius - r.distance;
-    c.point = r.point;
-    c.wall_velocity = m.pose ? mesh_point_velocity(m.pose[c.mesh], r.point) : Vec3d();
-    visit(c);
+    if (mesh_report_kept(m, list, count, x, radius, tol2, t, r)) visit(mesh_contact(m, t, r, x, radius));
   }
 }
 

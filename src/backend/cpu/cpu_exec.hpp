@@ -33,6 +33,13 @@ struct CpuExec {
     }
   }
 
+  // One thread per i: the GPU's lane groups (backend/cuda/cuda_exec.cuh) serve
+  // scenes too small to fill it; a CPU core runs a particle's contacts in turn.
+  template <class F>
+  static void parallel_for_lanes(Index n, const F& f) {
+    parallel_for(n, f);
+  }
+
   // Writes the indices i in [0, n) with pred(i), ascending, to out; returns
   // how many. One pass on the calling thread: it runs on a rank's owned
   // particles once or twice a step, next to a force loop that costs far more.

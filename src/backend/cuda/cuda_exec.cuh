@@ -8,7 +8,9 @@
 #include <cub/device/device_select.cuh>
 #include <thrust/iterator/counting_iterator.h>
 
+#include "backend/backend.hpp"
 #include "backend/check.hpp"
+#include "backend/cuda/lane_group.cuh"
 #include "backend/device_array.hpp"
 #include "core/history_layout.hpp"
 #include "neighbor/cell_list.hpp"
@@ -30,6 +32,15 @@ template <class F, int MinBlocks>
 __global__ void __launch_bounds__(kCudaBlock, MinBlocks) for_each_kernel_bounded(Index n, F f) {
   const Index i = Index(blockIdx.x) * Index(blockDim.x) + Index(threadIdx.x);
   if (i < n) f(i);
+}
+
+// The same with a group of `lanes` threads per i (backend/cuda/lane_group.cuh),
+// which call f.in_group(i, group).
+template <class F, int MinBlocks>
+__global__ void __launch_bounds__(kCudaBlock, MinBlocks) for_each_group_kernel(Index n, int lanes, F f) {
+  const long long thread = (long long)blockIdx.x * blockDim.x + threadIdx.x;
+  const Index i = Index(thread / lanes);
+  if (i < n) f.in_group(i, LaneGroup(lanes));
 }
 
 // Sets *flag where pred(i) holds for some i in [0, n) (any thread's store wins).
@@ -66,6 +77,21 @@ struct CudaExec {
       for_each_kernel_bounded<F, MinBlocksPerSM<F>::value><<<blocks, kBlock>>>(n, f);
     else
       for_each_kernel<<<blocks, kBlock>>>(n, f);
+    GS_CUDA_CHECK(cudaGetLastError());
+  }
+
+  // f over [0, n) with force_lanes(n) lanes per i (F::in_group), or one
+  // thread each (parallel_for) where that is one lane: a scene too small to
+  // fill the GPU lasts as long as its longest particle, whose work its lanes share.
+  template <class F>
+  static void parallel_for_lanes(Index n, const F& f) {
+    const int lanes = force_lanes(n);
+    if (lanes == 1) return parallel_for(n, f);
+    if (n <= 0) return;
+    static_assert(MinBlocksPerSM<F>::value > 0, "a functor run in lane groups names its resident blocks");
+    const long long threads = (long long)n * lanes;
+    const unsigned blocks = unsigned((threads + kBlock - 1) / kBlock);
+    for_each_group_kernel<F, MinBlocksPerSM<F>::value><<<blocks, kBlock>>>(n, lanes, f);
     GS_CUDA_CHECK(cudaGetLastError());
   }
 
