@@ -53,14 +53,17 @@ unsigned gpu_wait_flags() {
   throw std::invalid_argument("GRAINSTORM_GPU_WAIT must be spin, yield or block, got '" + mode + "'");
 }
 
-int force_lanes(long long n) {
+int force_lanes_setting() {
   const char* v = std::getenv("GRAINSTORM_FORCE_LANES");
-  if (v && *v && std::string(v) != "auto") {
-    const std::string s(v);
-    for (int lanes = 1; lanes <= kMaxForceLanes; lanes *= 2)
-      if (s == std::to_string(lanes)) return lanes;
-    throw std::invalid_argument("GRAINSTORM_FORCE_LANES must be auto, 1, 2, 4, 8, 16 or 32, got '" + s + "'");
-  }
+  if (!v || !*v || std::string(v) == "auto") return 0;
+  const std::string s(v);
+  for (int lanes = 1; lanes <= kMaxForceLanes; lanes *= 2)
+    if (s == std::to_string(lanes)) return lanes;
+  throw std::invalid_argument("GRAINSTORM_FORCE_LANES must be auto, 1, 2, 4, 8, 16 or 32, got '" + s + "'");
+}
+
+int force_lanes(long long n, int setting) {
+  if (setting != 0) return setting;
   int lanes = 1;
   while (lanes < kMaxForceLanes && n * lanes * 2 <= kForceLaneThreads) lanes *= 2;
   return lanes;
@@ -69,7 +72,7 @@ int force_lanes(long long n) {
 bool select_cuda_device(int local_rank) {
 #ifdef GS_HAVE_CUDA
   const unsigned wait = gpu_wait_flags();
-  force_lanes(0);  // an unknown setting fails here, not at the first step
+  force_lanes_setting();  // an unknown setting fails here, not at the first step
   int count = 0;
   GS_CUDA_CHECK(cudaGetDeviceCount(&count));
   if (count == 0) throw std::runtime_error("no CUDA device to bind local rank " + std::to_string(local_rank) + " to");

@@ -18,14 +18,17 @@ Backend default_backend();     // cuda when a device is available, else cpu
 // unknown value throws std::invalid_argument naming the variable.
 bool select_cuda_device(int local_rank);
 unsigned gpu_wait_flags();  // GRAINSTORM_GPU_WAIT as CUDA device flags; 0 where unset
-// GPU lanes per particle in the force computation (backend/cuda/lane_group.cuh):
-// GRAINSTORM_FORCE_LANES (1, 2, 4, 8, 16 or 32), else as many as keep a scene
-// of n particles under kForceLaneThreads threads (1 for a scene that fills
-// the GPU with a thread each). Any other value throws std::invalid_argument
-// naming the variable; select_cuda_device checks it at the start.
+// GPU lanes per particle in the force computation (backend/cuda/lane_group.cuh).
+// force_lanes_setting: GRAINSTORM_FORCE_LANES (1, 2, 4, 8, 16 or 32), 0 where it
+// is unset or auto; any other value throws std::invalid_argument naming the
+// variable (select_cuda_device checks it at the start). force_lanes: the
+// setting, or where it is 0 as many lanes as keep a scene of n particles
+// under kForceLaneThreads threads (1 for a scene that fills the GPU with a
+// thread each).
 constexpr long long kForceLaneThreads = 1 << 17;
 constexpr int kMaxForceLanes = 32;
-int force_lanes(long long n);
+int force_lanes_setting();
+int force_lanes(long long n, int setting);
 
 // The host threads this process runs its OpenMP loops on (OMP_NUM_THREADS or
 // the default), and the cores its CPU affinity lets them use. mpirun binds

@@ -34,7 +34,7 @@ GS_HD GS_INLINE double mul_add(double a, double b, double c) {
 // fuses where the source does not forbid it). A particle's force sum adds
 // with it, so that the sum has the same bits whether the thread computed each
 // contact itself or received it from another lane of its group
-// (engine/force_group.hpp). The host never fuses on its own.
+// (engine/force_kernel.hpp, in_group). The host never fuses on its own.
 GS_HD GS_INLINE float add_rounded(float a, float b) {
 #if defined(__CUDA_ARCH__)
   return __fadd_rn(a, b);

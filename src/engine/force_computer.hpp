@@ -6,6 +6,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "backend/backend.hpp"
 #include "engine/contact_measure_kernel.hpp"
 #include "engine/force_kernel.hpp"
 #include "engine/force_computation.hpp"
@@ -58,7 +59,7 @@ class ForceComputer final : public ForceComputation {
     meshes_.reserve(std::size_t(s.size()));
     with_candidates(s, [&](const auto& candidates) {
       if constexpr (std::is_same_v<std::decay_t<decltype(candidates)>, ListCandidates>)
-        Exec::parallel_for_lanes(s.n_owned, kernel(s, candidates, dt, step));
+        Exec::parallel_for_lanes(s.n_owned, lanes_setting_, kernel(s, candidates, dt, step));
       else
         Exec::parallel_for(s.n_owned, kernel(s, candidates, dt, step));
     });
@@ -133,6 +134,8 @@ class ForceComputer final : public ForceComputation {
   DeviceMeshes meshes_;
   StepState<Real>& st_;
   const NeighbourFinder<Exec>& neighbours_;
+  // GRAINSTORM_FORCE_LANES, read once, not at every step (the CPU has no lanes).
+  int lanes_setting_ = Exec::backend == Backend::cuda ? force_lanes_setting() : 1;
   DeviceArray<ContactMeasure> measures_{Exec::backend};  // the contact pass's, sized at its first use
 };
 

@@ -12,8 +12,8 @@
 
 #include "contact/contact_models.hpp"
 #include "contact/contact_slots.hpp"
-#include "core/bits.hpp"
 #include "contact/pair_springs.hpp"
+#include "core/bits.hpp"
 #include "neighbor/cell_list.hpp"
 #include "neighbor/verlet_list.hpp"
 #include "walls/sphere_triangle.hpp"
@@ -97,9 +97,7 @@ struct ForceKernel {
     const Vec3d xi = position[i];
     ParticleVisitor visit{this, i, xi, &total, &pairs_touching};
     candidates.for_each(i, xi, visit);
-    const double ri = radius[i];
-    for (int w = 0; w < n_walls; ++w)
-      if (wall_may_touch(wall_screens[w], xi, ri)) add_wall_contact(i, w, xi, total, touched);
+    add_wall_contacts(i, xi, total, touched);
     // One uniform branch per particle when the scene has no mesh (docs/MESHES.md, cost).
     if (meshes.n_triangles > 0) add_mesh_contacts(i, xi, total, touched);
     finish(i, total, touched, pairs_touching);
@@ -131,11 +129,7 @@ struct ForceKernel {
       for (; touched != 0; touched &= touched - 1) add_to(total, shuffled(g, load, lowest_bit(touched)));
     }
     unsigned touched = 0;
-    if (g.leader()) {
-      const double ri = radius[i];
-      for (int w = 0; w < n_walls; ++w)
-        if (wall_may_touch(wall_screens[w], xi, ri)) add_wall_contact(i, w, xi, total, touched);
-    }
+    if (g.leader()) add_wall_contacts(i, xi, total, touched);
     if (meshes.n_triangles > 0) {
       MeshContact waiting[kWaitingMeshContacts];
       int n_waiting = 0;
@@ -334,6 +328,13 @@ struct ForceKernel {
     load = contact_load<Real, Model, Effects>(pairs(material[i], material[j]), k, state, dt);
     if constexpr (kHistory) pair_history.store(entry, state);
     return true;
+  }
+
+  // The walls in scene order, each behind its cheap first test.
+  GS_HD GS_INLINE void add_wall_contacts(Index i, const Vec3d& xi, ContactLoad<Real>& total, unsigned& touched) const {
+    const double ri = radius[i];
+    for (int w = 0; w < n_walls; ++w)
+      if (wall_may_touch(wall_screens[w], xi, ri)) add_wall_contact(i, w, xi, total, touched);
   }
 
   GS_HD void add_wall_contact(Index i, int w, const Vec3d& xi, ContactLoad<Real>& total, unsigned& touched) const {

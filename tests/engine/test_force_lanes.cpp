@@ -42,7 +42,7 @@ TEST_F(ForceLanesTest, UnknownSettingIsRefusedByName) {
   for (const char* bad : {"3", "64", "0", "many", "16 "}) {
     setenv(kVariable, bad, 1);
     try {
-      force_lanes(1000);
+      force_lanes_setting();
       ADD_FAILURE() << bad << " was taken";
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find(kVariable), std::string::npos) << e.what();
@@ -54,22 +54,24 @@ TEST_F(ForceLanesTest, UnknownSettingIsRefusedByName) {
 TEST_F(ForceLanesTest, SettingIsTaken) {
   for (int lanes = 1; lanes <= kMaxForceLanes; lanes *= 2) {
     setenv(kVariable, std::to_string(lanes).c_str(), 1);
-    EXPECT_EQ(force_lanes(10'000'000), lanes);
+    EXPECT_EQ(force_lanes(10'000'000, force_lanes_setting()), lanes);
   }
   setenv(kVariable, "auto", 1);
-  EXPECT_EQ(force_lanes(10'000'000), 1);
+  EXPECT_EQ(force_lanes_setting(), 0);
+  EXPECT_EQ(force_lanes(10'000'000, force_lanes_setting()), 1);
 }
 
 // Unset: lanes only where one thread per particle leaves the GPU mostly idle,
 // as many as keep the threads under kForceLaneThreads.
 TEST_F(ForceLanesTest, AutomaticLanesServeOnlySmallScenes) {
   unsetenv(kVariable);
-  EXPECT_EQ(force_lanes(7680), 16);  // mixer case a
-  EXPECT_EQ(force_lanes(100), kMaxForceLanes);
-  EXPECT_EQ(force_lanes(kForceLaneThreads), 1);
-  EXPECT_EQ(force_lanes(400'000'000), 1);
+  ASSERT_EQ(force_lanes_setting(), 0);
+  EXPECT_EQ(force_lanes(7680, 0), 16);  // mixer case a
+  EXPECT_EQ(force_lanes(100, 0), kMaxForceLanes);
+  EXPECT_EQ(force_lanes(kForceLaneThreads, 0), 1);
+  EXPECT_EQ(force_lanes(400'000'000, 0), 1);
   for (long long n : {1LL, 1000LL, 7680LL, 20000LL, 65536LL, 70000LL}) {
-    const int lanes = force_lanes(n);
+    const int lanes = force_lanes(n, 0);
     EXPECT_LE(n * lanes, kForceLaneThreads) << n;
     if (lanes < kMaxForceLanes) {
       EXPECT_GT(n * lanes * 2, kForceLaneThreads) << n << ": twice the lanes would fit";

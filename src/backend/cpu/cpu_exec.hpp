@@ -36,7 +36,7 @@ struct CpuExec {
   // One thread per i: the GPU's lane groups (backend/cuda/cuda_exec.cuh) serve
   // scenes too small to fill it; a CPU core runs a particle's contacts in turn.
   template <class F>
-  static void parallel_for_lanes(Index n, const F& f) {
+  static void parallel_for_lanes(Index n, int /*setting*/, const F& f) {
     parallel_for(n, f);
   }
 

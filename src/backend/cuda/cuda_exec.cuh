@@ -80,12 +80,12 @@ struct CudaExec {
     GS_CUDA_CHECK(cudaGetLastError());
   }
 
-  // f over [0, n) with force_lanes(n) lanes per i (F::in_group), or one
-  // thread each (parallel_for) where that is one lane: a scene too small to
-  // fill the GPU lasts as long as its longest particle, whose work its lanes share.
+  // f over [0, n) with force_lanes(n, setting) lanes per i (F::in_group), or
+  // one thread each (parallel_for) where that is one lane: a scene too small
+  // to fill the GPU lasts as long as its longest particle, whose work its lanes share.
   template <class F>
-  static void parallel_for_lanes(Index n, const F& f) {
-    const int lanes = force_lanes(n);
+  static void parallel_for_lanes(Index n, int setting, const F& f) {
+    const int lanes = force_lanes(n, setting);
     if (lanes == 1) return parallel_for(n, f);
     if (n <= 0) return;
     static_assert(MinBlocksPerSM<F>::value > 0, "a functor run in lane groups names its resident blocks");
