@@ -98,7 +98,7 @@ class RunOutput {
     Index owned = -1;
   } staged_from_;
   bool writing_history_ = false;  // the writer's job in hand reads staged_.history
-  HostPins pins_;  // after the arrays it pins: unpins them before they go
+  HostPins pins_;  // resizes the arrays; the pinned bounce buffer of a GPU's copies
   // Last: destroyed first, so its job ends while the members it uses live.
   BackgroundWriter writer_;
 };
