@@ -67,13 +67,15 @@ void touch_pages(void* p, std::size_t bytes) {
 }
 
 unsigned char* HostPins::bounce(Backend b, std::size_t bytes) {
-  if (bytes > bounce_.size() || (bounce_.size() > 0 && b != bounce_backend_)) {
+  if (!pin_ || b == Backend::cpu) return nullptr;
+  if (bytes > bounce_.size() || b != bounce_backend_) {
     clear();
     bounce_.resize(bytes);
     bounce_backend_ = b;
-    bounce_pinned_ = pin_ && b != Backend::cpu && backend_pin_host(b, bounce_.data(), bounce_.size());
+    bounce_pinned_ = backend_pin_host(b, bounce_.data(), bounce_.size());
+    if (!bounce_pinned_) std::vector<unsigned char>().swap(bounce_);  // asked again next time
   }
-  return bounce_.data();
+  return bounce_pinned_ ? bounce_.data() : nullptr;
 }
 
 void HostPins::clear() noexcept {

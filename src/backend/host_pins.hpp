@@ -54,9 +54,10 @@ class HostPins {
     }
     v.resize(n);
   }
-  // A host buffer of at least `bytes` for backend b's copies, kept from call
-  // to call; page-locked on a GPU (unless constructed with pin false, or the
-  // range cannot be pinned: then pageable, and the copies merely slower).
+  // A page-locked host buffer of at least `bytes` for backend b's copies,
+  // kept from call to call; null where there is none: on the CPU backend,
+  // with pin false, or where the range cannot be pinned (the caller then
+  // copies straight into its pageable array, as the driver stages it).
   unsigned char* bounce(Backend b, std::size_t bytes);
   // Unpins the bounce buffer and lets it go.
   void clear() noexcept;

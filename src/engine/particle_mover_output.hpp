@@ -27,7 +27,8 @@ struct GatherRowsAs {
 // kernel writes `out` itself; on a GPU it writes the staging array a chunk of
 // rows at a time, each chunk copied to the pinned bounce buffer and from
 // there, on every host thread, to its place in `out` (pageable: no array
-// pinned whole, backend/host_pins.hpp).
+// pinned whole, backend/host_pins.hpp); without a bounce buffer (a copy
+// made once) straight to its place.
 template <class Exec, class U, class Rows>
 void rows_to_host(std::vector<U>& out, Index n, std::size_t width, HostPins& pins, DeviceArray<unsigned char>& staging,
                   const Rows& rows) {
@@ -46,13 +47,14 @@ void rows_to_host(std::vector<U>& out, Index n, std::size_t width, HostPins& pin
     const std::size_t chunk_bytes = std::size_t(chunk) * row_bytes;
     staging.resize_discarding(chunk_bytes);
     U* to = reinterpret_cast<U*>(staging.data());
-    unsigned char* bounce = pins.bounce(Exec::backend, chunk_bytes);
+    unsigned char* bounce = pins.bounce(Exec::backend, chunk_bytes);  // null: straight to `out`
     for (Index first = 0; first < n; first += chunk) {
       const Index m = std::min(chunk, n - first);
       const std::size_t bytes = std::size_t(m) * row_bytes;
+      U* place = out.data() + std::size_t(first) * width;
       rows(first, m, to);
-      backend_copy_to_host(Exec::backend, bounce, to, bytes);
-      host_copy(out.data() + std::size_t(first) * width, bounce, bytes);
+      backend_copy_to_host(Exec::backend, bounce ? static_cast<void*>(bounce) : place, to, bytes);
+      if (bounce) host_copy(place, bounce, bytes);
     }
   }
 }
