@@ -278,12 +278,13 @@ void RunOutput::index_earlier_snapshots(long long step) {
 
 void RunOutput::checkpoint(const Simulation& sim) {
   // The state of the last snapshot (on every rank: the staging is collective):
-  // its particles are the checkpoint's, and the history is copied while that
-  // snapshot's file, which does not read it, is still being written.
-  if (transport_.min(staged_particles_are(sim) ? 1 : 0) == 1) {
+  // its particles are the checkpoint's, the history is copied while that
+  // snapshot's file, which does not read it, is still being written, and the
+  // checkpoint's file follows it on the writer's thread (no wait here).
+  const bool after_snapshot = transport_.min(staged_particles_are(sim) ? 1 : 0) == 1;
+  if (after_snapshot) {
     if (writing_history_) finish();
     stage_history(sim);
-    finish();
   } else {
     finish();  // the previous files are complete before the host copy is refilled
     stage(sim, true);
@@ -292,8 +293,9 @@ void RunOutput::checkpoint(const Simulation& sim) {
   if (transport_.rank() != 0) return;
   const std::optional<InsertionState> insertion =
       scene_.inlets.empty() ? std::nullopt : std::optional<InsertionState>(sim.insertion());
+  // The header, walls and insertion state: none of them read by the snapshot's job.
   complete_checkpoint(staged_, sim.walls(), scene_hash_, transport_.size(), insertion);
-  in_background([this] {
+  auto job = [this] {
     const Checkpoint& c = staged_;  // refilled only after finish()
     const std::string path = directory_ + "/" + checkpoint_h5_name(c.step);
     const auto start = Clock::now();
@@ -305,7 +307,9 @@ void RunOutput::checkpoint(const Simulation& sim) {
       checkpoints_.erase(checkpoints_.begin());
     }
     log_written("checkpoint", path, seconds);
-  });
+  };
+  if (after_snapshot) writer_.then(job);
+  else in_background(job);
 }
 
 void RunOutput::fault_snapshot(const Simulation& sim) {

@@ -10,8 +10,9 @@
 // the writer reads them, and they are refilled only after that wait. A
 // checkpoint of the state the last snapshot copied (the same simulation at
 // the same step: the caller changes nothing between the two) takes that
-// snapshot's particles as they are, and copies the contact history, which the
-// snapshot's file does not read, while that file is still being written.
+// snapshot's particles as they are, copies the contact history, which the
+// snapshot's file does not read, while that file is still being written, and
+// hands its file to the writer to follow the snapshot's, without a wait.
 #include <cstdio>
 #include <string>
 #include <vector>
