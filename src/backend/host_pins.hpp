@@ -35,8 +35,8 @@ void touch_pages(void* p, std::size_t bytes);
 
 class HostPins {
  public:
-  // pin false: the bounce buffer stays pageable (a copy made once gains
-  // nothing from pinning, which costs more than the copy it speeds up).
+  // pin false: no bounce buffer (a copy made once gains nothing from
+  // pinning, which costs more than the copy it speeds up).
   explicit HostPins(bool pin = true) : pin_(pin) {}
   ~HostPins() { clear(); }
   HostPins(const HostPins&) = delete;

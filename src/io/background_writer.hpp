@@ -1,8 +1,9 @@
 #pragma once
 // Output files written on a thread of their own while the run steps on. One
 // job at a time, in the order given: the next job starts only once the
-// previous one is done (start() after wait(), or then()). A job reads host arrays its owner keeps and reuses
-// (run/run_output.hpp): the owner refills them only after wait().
+// previous one is done (start() after wait(), or then()). A job reads host
+// arrays its owner keeps and reuses (run/run_output.hpp): the owner refills
+// them only after wait().
 #include <functional>
 #include <string>
 #include <thread>

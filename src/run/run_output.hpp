@@ -6,10 +6,11 @@
 // Snapshot and checkpoint files are written on a thread of their own
 // (io/background_writer.hpp) while the run steps on: the next snapshot,
 // checkpoint or finish() waits for them and reports their failure. Their host
-// copies are one set of arrays kept from output to output (pinned on a GPU);
-// the writer reads them, and they are refilled only after that wait. A
-// checkpoint of the state the last snapshot copied (the same simulation at
-// the same step: the caller changes nothing between the two) takes that
+// copies are one set of arrays kept from output to output (a GPU writes them
+// through a pinned bounce buffer, backend/host_pins.hpp); the writer reads
+// them, and they are refilled only after that wait. A checkpoint of the
+// state the last snapshot copied (the same Simulation object at the same
+// step: the caller changes nothing between the two) takes that
 // snapshot's particles as they are, copies the contact history, which the
 // snapshot's file does not read, while that file is still being written, and
 // hands its file to the writer to follow the snapshot's, without a wait.
