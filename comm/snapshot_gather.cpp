@@ -3,6 +3,7 @@
 #include "comm/records_codec.hpp"
 #include "core/id_order.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 #include <type_traits>
@@ -21,12 +22,15 @@ void for_each_field(Snapshot& s, F&& f) {
   f(s.contacts);
 }
 
-Bytes pack(const ParticleSnapshot& s) {
+// The arrays visit(f) hands to f, one after the other, each as its count
+// (uint64) and its values: one allocation, not one per array.
+template <class Visit>
+Bytes pack_arrays(Visit&& visit) {
   std::size_t size = 0;
-  for_each_field(s, [&](auto& v) { size += sizeof(std::uint64_t) + v.size() * sizeof(v[0]); });
-  Bytes out(size);  // one allocation, not one per field
+  visit([&](const auto& v) { size += sizeof(std::uint64_t) + v.size() * sizeof(v[0]); });
+  Bytes out(size);
   std::size_t at = 0;
-  for_each_field(s, [&](auto& v) {
+  visit([&](const auto& v) {
     const std::uint64_t n = v.size();
     const std::size_t bytes = n * sizeof(v[0]);
     std::memcpy(out.data() + at, &n, sizeof(n));
@@ -34,6 +38,10 @@ Bytes pack(const ParticleSnapshot& s) {
     at += sizeof(n) + bytes;
   });
   return out;
+}
+
+Bytes pack(const ParticleSnapshot& s) {
+  return pack_arrays([&](auto&& f) { for_each_field(s, f); });
 }
 
 // Reads the row count of the next field of each part, at the parts' cursors.
@@ -45,6 +53,52 @@ std::vector<std::uint64_t> next_counts(const std::vector<Bytes>& parts, std::vec
     at[p] += sizeof(std::uint64_t);
   }
   return n;
+}
+
+// The next array of every part at the parts' cursors: rows of `width`
+// values, row k of the parts (one after another) to row place[k] of `v`,
+// which is resized to hold them (an array not kept travels empty: `v` empty).
+template <class T>
+void unpack_rows(const std::vector<Bytes>& parts, std::vector<std::size_t>& at, const std::vector<std::size_t>& place,
+                 std::size_t width, std::vector<T>& v) {
+  const std::vector<std::uint64_t> n = next_counts(parts, at);
+  std::size_t total = 0;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    total += n[p];
+    if (at[p] + n[p] * sizeof(T) > parts[p].size()) throw std::runtime_error("snapshot message truncated");
+  }
+  if (total != 0 && total != place.size() * width) throw std::runtime_error("snapshot message: an array has another row count");
+  v.resize(total);
+  const std::size_t row_bytes = width * sizeof(T);
+  for (std::size_t p = 0, row = 0; p < parts.size(); ++p) {
+    const char* from = parts[p].data() + at[p];
+    const auto m = static_cast<std::ptrdiff_t>(width > 0 ? n[p] / width : 0);
+#pragma omp parallel for schedule(static) if (m > 100000)
+    for (std::ptrdiff_t j = 0; j < m; ++j)
+      std::memcpy(&v[place[row + std::size_t(j)] * width], from + std::size_t(j) * row_bytes, row_bytes);
+    at[p] += n[p] * sizeof(T);
+    row += std::size_t(m);
+  }
+}
+
+// The first array of every part, ids (the cursors move past them):
+// place[k], the row in id order of row k of the parts one after another.
+std::vector<std::size_t> id_places(const std::vector<Bytes>& parts, std::vector<std::size_t>& at) {
+  const std::vector<std::uint64_t> n = next_counts(parts, at);
+  std::size_t total = 0;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    total += n[p];
+    if (at[p] + n[p] * sizeof(ParticleId) > parts[p].size()) throw std::runtime_error("snapshot message truncated");
+  }
+  std::vector<ParticleId> ids(total);
+  for (std::size_t p = 0, row = 0; p < parts.size(); row += n[p], ++p) {
+    if (n[p] > 0) std::memcpy(ids.data() + row, parts[p].data() + at[p], n[p] * sizeof(ParticleId));
+    at[p] += n[p] * sizeof(ParticleId);
+  }
+  const std::vector<std::size_t> order = id_order(ids);
+  std::vector<std::size_t> place(total);
+  for (std::size_t r = 0; r < total; ++r) place[order[r]] = r;
+  return place;
 }
 
 // Every rank's packed part into `all` on rank 0, in id order. The parts'
@@ -60,34 +114,18 @@ void gather_packed(Transport& transport, Bytes packed, double time, long long st
     return;
   }
   std::vector<std::size_t> at(parts.size(), 0);
-  std::vector<std::size_t> place;  // place[k]: the row in id order of row k of the parts, one after another
-  for_each_field(all, [&](auto& v) {
-    using T = typename std::decay_t<decltype(v)>::value_type;
-    const std::vector<std::uint64_t> n = next_counts(parts, at);
-    std::size_t total = 0;
-    for (std::size_t p = 0; p < parts.size(); ++p) {
-      total += n[p];
-      if (at[p] + n[p] * sizeof(T) > parts[p].size()) throw std::runtime_error("snapshot message truncated");
-    }
-    if (place.empty() && total > 0) {  // the first field: the ids
-      std::vector<ParticleId> ids(total);
-      for (std::size_t p = 0, row = 0; p < parts.size(); row += n[p], ++p)
-        if (n[p] > 0) std::memcpy(ids.data() + row, parts[p].data() + at[p], n[p] * sizeof(ParticleId));
-      const std::vector<std::size_t> order = id_order(ids);
-      place.resize(total);
-      for (std::size_t r = 0; r < total; ++r) place[order[r]] = r;
-    }
-    if (total != 0 && total != place.size()) throw std::runtime_error("snapshot message: a field has another row count");
-    v.resize(total);  // an optional field not kept: empty
-    for (std::size_t p = 0, row = 0; p < parts.size(); row += n[p], ++p) {
-      const char* from = parts[p].data() + at[p];
-      const auto m = static_cast<std::ptrdiff_t>(n[p]);
-#pragma omp parallel for schedule(static) if (m > 100000)
-      for (std::ptrdiff_t j = 0; j < m; ++j)
-        std::memcpy(&v[place[row + std::size_t(j)]], from + std::size_t(j) * sizeof(T), sizeof(T));
-      at[p] += n[p] * sizeof(T);
-    }
-  });
+  std::vector<std::size_t> ids_at = at;
+  const std::vector<std::size_t> place = id_places(parts, ids_at);  // the ids are the first field
+  for_each_field(all, [&](auto& v) { unpack_rows(parts, at, place, 1, v); });
+}
+
+// Each array of a rank's history part: its ids, then the partners and the
+// history fields (one not kept travels empty).
+template <class Ids, class History, class F>
+void for_each_history_array(Ids& ids, History& h, F&& f) {
+  f(ids);
+  f(h.partner);
+  for_each_history_field(h, [&](const char*, unsigned, auto& v) { f(v); });
 }
 
 }  // namespace
@@ -118,16 +156,27 @@ HostHistory gather_history(Transport& transport, const std::vector<ParticleId>& 
   return all;
 }
 
+// Each rank's rows go straight from its message to their place in id order
+// in `all`'s arrays (kept from the last call), as gather_packed does: no
+// copy of the whole history appended, decoded or permuted on rank 0.
 void gather_history(Transport& transport, const std::vector<ParticleId>& local_ids, const HostHistory& local,
                     HostHistory& all) {
   if (transport.size() == 1) {
     if (&all != &local) all = local;
     return;
   }
-  ParticleRecords mine;
-  mine.id = local_ids;
-  mine.history = local;
-  all = gather_history_records(transport, mine).history;
+  std::vector<Bytes> parts = transport.gather(pack_arrays([&](auto&& f) { for_each_history_array(local_ids, local, f); }));
+  all.slots = local.slots;  // the same on every rank (the scene's)
+  std::vector<ParticleId> no_ids;
+  if (transport.rank() != 0) {
+    for_each_history_array(no_ids, all, [](auto& v) { v.clear(); });
+    return;
+  }
+  std::vector<std::size_t> at(parts.size(), 0);
+  const std::vector<std::size_t> place = id_places(parts, at);
+  const std::size_t width = std::size_t(std::max(0, all.slots));
+  unpack_rows(parts, at, place, width, all.partner);
+  for_each_history_field(all, [&](const char*, unsigned, auto& v) { unpack_rows(parts, at, place, width, v); });
 }
 
 ParticleRecords gather_history_records(Transport& transport, const ParticleRecords& local) {

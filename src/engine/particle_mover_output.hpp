@@ -25,7 +25,10 @@ struct GatherRowsAs {
 // Host array `out` of n rows of `width` values, written by rows(first, m,
 // to): a kernel that writes rows [first, first + m) at `to`. On the CPU the
 // kernel writes `out` itself; on a GPU it writes the staging array a chunk of
-// rows at a time, each chunk copied once to its place in `out`.
+// rows at a time, each chunk copied to the pinned bounce buffer and from
+// there, on every host thread, to its place in `out` (pageable: no array
+// pinned whole, backend/host_pins.hpp); without a bounce buffer (a copy
+// made once) straight to its place.
 template <class Exec, class U, class Rows>
 void rows_to_host(std::vector<U>& out, Index n, std::size_t width, HostPins& pins, DeviceArray<unsigned char>& staging,
                   const Rows& rows) {
@@ -34,17 +37,24 @@ void rows_to_host(std::vector<U>& out, Index n, std::size_t width, HostPins& pin
   if constexpr (Exec::backend == Backend::cpu) {
     rows(0, n, out.data());
   } else {
-    // The staging array as large as it already is (a reorder sizes it for
-    // the widest field), at least 64 MiB: a few chunks, no new device memory.
+    // Chunks of at most 64 MiB: few enough that the launches and waits are
+    // negligible, small enough that the bounce buffer stays small. The
+    // staging array keeps its storage when it is larger (a re-sort sizes it
+    // for the widest field): no new device memory.
+    constexpr std::size_t kChunkBytes = std::size_t(64) << 20;
     const std::size_t row_bytes = width * sizeof(U);
-    const std::size_t budget = std::max(staging.bytes(), std::size_t(64) << 20);
-    const Index chunk = Index(std::max<std::size_t>(1, std::min<std::size_t>(std::size_t(n), budget / row_bytes)));
-    staging.resize(std::size_t(chunk) * row_bytes);
+    const Index chunk = Index(std::max<std::size_t>(1, std::min<std::size_t>(std::size_t(n), kChunkBytes / row_bytes)));
+    const std::size_t chunk_bytes = std::size_t(chunk) * row_bytes;
+    staging.resize_discarding(chunk_bytes);
     U* to = reinterpret_cast<U*>(staging.data());
+    unsigned char* bounce = pins.bounce(Exec::backend, chunk_bytes);  // null: straight to `out`
     for (Index first = 0; first < n; first += chunk) {
       const Index m = std::min(chunk, n - first);
+      const std::size_t bytes = std::size_t(m) * row_bytes;
+      U* place = out.data() + std::size_t(first) * width;
       rows(first, m, to);
-      backend_copy_to_host(Exec::backend, out.data() + std::size_t(first) * width, to, std::size_t(m) * row_bytes);
+      backend_copy_to_host(Exec::backend, bounce ? static_cast<void*>(bounce) : place, to, bytes);
+      if (bounce) host_copy(place, bounce, bytes);
     }
   }
 }

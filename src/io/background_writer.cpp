@@ -6,16 +6,30 @@ namespace gs {
 
 BackgroundWriter::~BackgroundWriter() { wait(); }
 
+void BackgroundWriter::run(const std::function<void()>& job) {
+  std::string error;
+  try {
+    job();
+  } catch (const std::exception& e) {
+    error = e.what();
+  } catch (...) {
+    error = "unknown error while writing output";
+  }
+  if (!error.empty()) error_ += (error_.empty() ? "" : "; ") + error;
+}
+
 void BackgroundWriter::start(std::function<void()> job) {
   if (thread_.joinable()) throw std::logic_error("BackgroundWriter::start: the previous job is still in hand");
-  thread_ = std::thread([this, job = std::move(job)] {
-    try {
-      job();
-    } catch (const std::exception& e) {
-      error_ = e.what();
-    } catch (...) {
-      error_ = "unknown error while writing output";
-    }
+  thread_ = std::thread([this, job = std::move(job)] { run(job); });
+}
+
+void BackgroundWriter::then(std::function<void()> job) {
+  if (!thread_.joinable()) return start(std::move(job));
+  // The new thread joins the one in hand first: the jobs stay in order, and
+  // the join orders the first job's error_ before the second's.
+  thread_ = std::thread([this, before = std::move(thread_), job = std::move(job)]() mutable {
+    before.join();
+    run(job);
   });
 }
 

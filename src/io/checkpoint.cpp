@@ -104,20 +104,34 @@ std::vector<std::uint64_t> checkpoint_block_checksums(const Checkpoint& c) {
   const ParticleSnapshot& p = c.particles;
   const HostHistory& h = c.history;
   const std::size_t n = p.size(), rows = c.checksum_block_rows, slots = std::size_t(std::max(0, h.slots));
-  std::vector<std::uint64_t> sums;
+  struct Block {
+    const unsigned char* bytes;
+    std::size_t count;
+  };
+  std::vector<Block> blocks;  // in the table's order
   auto add = [&](const auto& field, std::size_t per) {
     if (field.empty()) return;  // an array the run does not keep
-    for (std::size_t a = 0; a < n; a += rows) {
-      Fnv1a64 sum;
-      sum.add(field.data() + a * per, (std::min(n, a + rows) - a) * per * sizeof(field[0]));
-      sums.push_back(sum.value());
-    }
+    const auto* bytes = reinterpret_cast<const unsigned char*>(field.data());
+    const std::size_t row_bytes = per * sizeof(field[0]);
+    for (std::size_t a = 0; a < n; a += rows)
+      blocks.push_back({bytes + a * row_bytes, (std::min(n, a + rows) - a) * row_bytes});
   };
   for_each_particle_field(p, [&](const char*, const auto& field) { add(field, 1); });
   add(p.force, 1);
   add(p.torque, 1);
   add(h.partner, slots);
   for_each_history_field(h, [&](const char*, unsigned, const auto& field) { add(field, slots); });
+  // FNV-1a is one serial multiply per byte, but the blocks are independent:
+  // summed on every host thread (a checkpoint of 24e6 frictional spheres
+  // holds about 200 blocks of 1e6 rows).
+  std::vector<std::uint64_t> sums(blocks.size());
+  const auto count = static_cast<std::ptrdiff_t>(blocks.size());
+#pragma omp parallel for schedule(dynamic, 1) if (count > 1)
+  for (std::ptrdiff_t k = 0; k < count; ++k) {
+    Fnv1a64 sum;
+    sum.add(blocks[std::size_t(k)].bytes, blocks[std::size_t(k)].count);
+    sums[std::size_t(k)] = sum.value();
+  }
   return sums;
 }
 

@@ -139,6 +139,7 @@ void RunOutput::snapshot(const Simulation& sim) {
   in_background([this, walls = sim.walls(), meshes = sim.meshes()] {
     write_snapshot_files(staged_.particles, walls, meshes);
   });
+  writing_history_ = false;
 }
 
 // This rank's owned particles (and their contact history) to the host, and
@@ -148,13 +149,24 @@ void RunOutput::snapshot(const Simulation& sim) {
 void RunOutput::stage(const Simulation& sim, bool with_history) {
   const bool one_rank = transport_.size() == 1;
   ParticleSnapshot& mine = one_rank ? staged_.particles : local_;
+  staged_from_ = StagedState{};  // until the copy is complete
   sim.snapshot_into(mine, pins_);
-  if (with_history) {
-    HostHistory& history = one_rank ? staged_.history : local_history_;
-    sim.history_into(history, pins_);
-    gather_history(transport_, mine.id, history, staged_.history);
-  }
+  if (with_history) stage_history(sim);
   gather_snapshot(transport_, mine, staged_.particles);
+  staged_from_ = StagedState{&sim, sim.step_count(), sim.particle_count()};
+}
+
+// The history in the particles' order: this rank's, and every rank's on rank 0.
+void RunOutput::stage_history(const Simulation& sim) {
+  const bool one_rank = transport_.size() == 1;
+  HostHistory& history = one_rank ? staged_.history : local_history_;
+  sim.history_into(history, pins_);
+  gather_history(transport_, (one_rank ? staged_.particles : local_).id, history, staged_.history);
+}
+
+bool RunOutput::staged_particles_are(const Simulation& sim) const {
+  return staged_from_.sim == &sim && staged_from_.step == sim.step_count() &&
+         staged_from_.owned == sim.particle_count();
 }
 
 // On the writer's thread: the snapshot's files, then the indexes that name
@@ -265,13 +277,25 @@ void RunOutput::index_earlier_snapshots(long long step) {
 }
 
 void RunOutput::checkpoint(const Simulation& sim) {
-  finish();  // the previous files are complete before the host copy is refilled
-  stage(sim, true);
+  // The state of the last snapshot (on every rank: the staging is collective):
+  // its particles are the checkpoint's, the history is copied while that
+  // snapshot's file, which does not read it, is still being written, and the
+  // checkpoint's file follows it on the writer's thread (no wait here).
+  const bool after_snapshot = transport_.min(staged_particles_are(sim) ? 1 : 0) == 1;
+  if (after_snapshot) {
+    if (writing_history_) finish();
+    stage_history(sim);
+  } else {
+    finish();  // the previous files are complete before the host copy is refilled
+    stage(sim, true);
+  }
+  writing_history_ = true;
   if (transport_.rank() != 0) return;
   const std::optional<InsertionState> insertion =
       scene_.inlets.empty() ? std::nullopt : std::optional<InsertionState>(sim.insertion());
+  // The header, walls and insertion state: none of them read by the snapshot's job.
   complete_checkpoint(staged_, sim.walls(), scene_hash_, transport_.size(), insertion);
-  in_background([this] {
+  auto job = [this] {
     const Checkpoint& c = staged_;  // refilled only after finish()
     const std::string path = directory_ + "/" + checkpoint_h5_name(c.step);
     const auto start = Clock::now();
@@ -283,7 +307,9 @@ void RunOutput::checkpoint(const Simulation& sim) {
       checkpoints_.erase(checkpoints_.begin());
     }
     log_written("checkpoint", path, seconds);
-  });
+  };
+  if (after_snapshot) writer_.then(job);
+  else in_background(job);
 }
 
 void RunOutput::fault_snapshot(const Simulation& sim) {

@@ -6,8 +6,14 @@
 // Snapshot and checkpoint files are written on a thread of their own
 // (io/background_writer.hpp) while the run steps on: the next snapshot,
 // checkpoint or finish() waits for them and reports their failure. Their host
-// copies are one set of arrays kept from output to output (pinned on a GPU);
-// the writer reads them, and they are refilled only after that wait.
+// copies are one set of arrays kept from output to output (a GPU writes them
+// through a pinned bounce buffer, backend/host_pins.hpp); the writer reads
+// them, and they are refilled only after that wait. A checkpoint of the
+// state the last snapshot copied (the same Simulation object at the same
+// step: the caller changes nothing between the two) takes that
+// snapshot's particles as they are, copies the contact history, which the
+// snapshot's file does not read, while that file is still being written, and
+// hands its file to the writer to follow the snapshot's, without a wait.
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -66,6 +72,8 @@ class RunOutput {
                             const std::vector<double>& mesh_load);
   void write_snapshot_files(const ParticleSnapshot& s, const std::vector<Wall>& walls, const MeshSet& meshes);
   void stage(const Simulation& sim, bool with_history);  // the host copy in staged_ (rank 0)
+  void stage_history(const Simulation& sim);             // staged_'s history alone
+  bool staged_particles_are(const Simulation& sim) const;  // the state staged_'s particles hold
 
   const SceneSpec& scene_;
   std::string directory_;
@@ -85,7 +93,14 @@ class RunOutput {
   Checkpoint staged_;
   ParticleSnapshot local_;
   HostHistory local_history_;
-  HostPins pins_;  // after the arrays it pins: unpins them before they go
+  // Whose state the particles in staged_ (and local_) hold: a simulation at a step.
+  struct StagedState {
+    const Simulation* sim = nullptr;
+    long long step = -1;
+    Index owned = -1;
+  } staged_from_;
+  bool writing_history_ = false;  // the writer's job in hand reads staged_.history
+  HostPins pins_;  // resizes the arrays; the pinned bounce buffer of a GPU's copies
   // Last: destroyed first, so its job ends while the members it uses live.
   BackgroundWriter writer_;
 };

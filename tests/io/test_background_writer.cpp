@@ -1,6 +1,7 @@
-// The writer's thread: jobs run one at a time in the order given, a job's
-// error comes back from wait() once, and the destructor waits for the job in
-// hand (its files are complete when the owner is gone).
+// The writer's thread: jobs run one at a time in the order given (also when
+// queued with then()), a job's error comes back from wait() once, and the
+// destructor waits for the jobs in hand (their files are complete when the
+// owner is gone).
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -35,6 +36,28 @@ TEST(BackgroundWriter, RefusesASecondJobWhileOneIsInHand) {
   writer.start([] { std::this_thread::sleep_for(std::chrono::milliseconds(20)); });
   EXPECT_THROW(writer.start([] {}), std::logic_error);
   EXPECT_EQ(writer.wait(), "");
+}
+
+// then(): the job follows the one in hand without a wait by the caller; both
+// run, in order, and wait() returns both errors.
+TEST(BackgroundWriter, ThenRunsAfterTheJobInHand) {
+  BackgroundWriter writer;
+  std::vector<int> done;
+  writer.start([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    done.push_back(1);
+    throw std::runtime_error("snapshot failed");
+  });
+  writer.then([&] {
+    done.push_back(2);
+    throw std::runtime_error("checkpoint failed");
+  });
+  writer.then([&] { done.push_back(3); });
+  EXPECT_EQ(writer.wait(), "snapshot failed; checkpoint failed");
+  EXPECT_EQ(done, (std::vector<int>{1, 2, 3}));
+  writer.then([&] { done.push_back(4); });  // none in hand: at once
+  EXPECT_EQ(writer.wait(), "");
+  EXPECT_EQ(done, (std::vector<int>{1, 2, 3, 4}));
 }
 
 TEST(BackgroundWriter, DestructorWaitsForTheJob) {

@@ -125,6 +125,45 @@ TEST(Checkpoint, RoundTripIsBitwise) {
   EXPECT_EQ(test::read_h5_attribute<std::uint64_t>(path, "/", "checksum", H5T_NATIVE_UINT64), checkpoint_checksum(c));
 }
 
+// The block checksums are summed on several threads: each must still be the
+// FNV-1a (by its definition, byte by byte) of its own block, in the table's
+// order (each array's blocks in row order, the arrays as docs/OUTPUT.md lists
+// them), whatever thread summed it. Blocks of 7 rows: 143 per array.
+std::uint64_t fnv_by_definition(const void* data, std::size_t bytes) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (std::size_t k = 0; k < bytes; ++k) h = (h ^ static_cast<const unsigned char*>(data)[k]) * 1099511628211ull;
+  return h;
+}
+
+TEST(Checkpoint, BlockChecksumsAreEachBlocksFnvInTableOrder) {
+  Checkpoint c = sample_checkpoint(1000, 3);
+  c.checksum_block_rows = 7;
+  std::vector<std::uint64_t> expected;
+  auto blocks_of = [&](const auto& v, std::size_t per) {
+    const std::size_t row = per * sizeof(v[0]);
+    for (std::size_t a = 0; a < 1000; a += 7)
+      expected.push_back(fnv_by_definition(reinterpret_cast<const char*>(v.data()) + a * row,
+                                           std::min<std::size_t>(7, 1000 - a) * row));
+  };
+  const ParticleSnapshot& p = c.particles;
+  ASSERT_TRUE(p.image.empty() && p.frozen.empty());  // optional fields not kept: no blocks
+  blocks_of(p.id, 1);
+  blocks_of(p.material, 1);
+  blocks_of(p.marker, 1);
+  blocks_of(p.radius, 1);
+  blocks_of(p.mass, 1);
+  blocks_of(p.inertia, 1);
+  blocks_of(p.position, 1);
+  blocks_of(p.velocity, 1);
+  blocks_of(p.angular_velocity, 1);
+  blocks_of(p.orientation, 1);
+  blocks_of(p.force, 1);
+  blocks_of(p.torque, 1);
+  blocks_of(c.history.partner, 3);
+  blocks_of(c.history.tangential, 3);
+  EXPECT_EQ(checkpoint_block_checksums(c), expected);
+}
+
 // The hysteretic model's peak overlaps: written and read back bit for bit;
 // a run that does not keep them writes no dataset, so its file (and its
 // checksum) is what format 2 was before the field existed.

@@ -10,6 +10,9 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <numeric>
+#include <random>
+#include <string>
 #include <tuple>
 
 #include "comm/device_link.hpp"
@@ -408,6 +411,52 @@ constexpr long long kCompressedSteps = 400;
 
 TEST(RankIndependence, CompressedLatticeWithManyContacts) {
   expect_rank_independent(compressed_lattice_scene(), kCompressedSteps);
+}
+
+// The checkpoint's gather (comm/snapshot_gather.cpp): every rank's history
+// rows at their particle's place in id order on rank 0, bitwise the one-rank
+// run's history (in id order by its own path, no gather), twice into the same
+// arrays (kept from call to call, as RunOutput keeps them).
+TEST(RankIndependence, GatheredHistoryIsTheOneRanksInIdOrder) {
+  SceneSpec scene = compressed_lattice_scene();
+  std::vector<ParticleId> ids(scene.particles.size());  // shuffled: every rank's ids spread over the whole range
+  std::iota(ids.begin(), ids.end(), ParticleId(0));
+  std::shuffle(ids.begin(), ids.end(), std::mt19937(5));
+  for (std::size_t i = 0; i < ids.size(); ++i) scene.particles[i].id = ids[i];
+  Simulation one(scene, {});
+  one.run(50);
+  Simulation many(scene, {}, split_scene(scene, world()));
+  many.run(50);
+  // This rank's rows handed over last first: the gather puts them in order.
+  std::vector<ParticleId> mine = many.snapshot().id;
+  HostHistory local = many.history();
+  const std::size_t width = std::size_t(local.slots), n = mine.size();
+  std::reverse(mine.begin(), mine.end());
+  auto reverse_rows = [&](auto& v) {
+    for (std::size_t i = 0; i < n / 2; ++i)
+      for (std::size_t k = 0; k < width; ++k) std::swap(v[i * width + k], v[(n - 1 - i) * width + k]);
+  };
+  reverse_rows(local.partner);
+  reverse_rows(local.tangential);
+  HostHistory all;
+  for (int call = 0; call < 2; ++call) {  // no ASSERT: rank 0 must reach the second (collective) call too
+    std::string error;
+    try {
+      gather_history(world(), mine, local, all);
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    if (world().rank() != 0) continue;
+    EXPECT_EQ(error, "") << "call " << call;
+    const HostHistory ref = one.history();
+    EXPECT_EQ(all.slots, ref.slots);
+    EXPECT_EQ(all.partner, ref.partner) << "call " << call;
+    EXPECT_TRUE(all.tangential.size() == ref.tangential.size() &&
+                std::memcmp(all.tangential.data(), ref.tangential.data(), ref.tangential.size() * sizeof(Vec3d)) == 0)
+        << "call " << call;
+    const auto touching = std::count_if(ref.partner.begin(), ref.partner.end(), [](ParticleId p) { return p != kNoPartner; });
+    EXPECT_GT(touching, std::ptrdiff_t(ref.partner.size() / 4)) << "a bed in contact";
+  }
 }
 
 // A lattice kept as its description: each rank generates and holds only the

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <numeric>
@@ -105,6 +106,77 @@ TEST_P(RunOutputTest, BackToBackOutputsEachWriteTheirOwnParticles) {
     EXPECT_EQ(c.particles.id, ids);
     EXPECT_EQ(c.history.partner, std::vector<ParticleId>(c.history.partner.size(), kNoPartner));
   }
+  std::filesystem::remove_all(dir);
+}
+
+// 500 pairs of spheres pressed 0.1 mm into each other and sliding past each
+// other (friction springs in every pair's history), ids shuffled; `slide`
+// sets the speed of the slip.
+SceneSpec sliding_pairs_scene(const std::string& directory, double slide) {
+  SceneSpec s = free_flight_scene(directory);
+  s.particles.clear();
+  std::vector<ParticleId> ids(1000);
+  std::iota(ids.begin(), ids.end(), ParticleId(0));
+  std::shuffle(ids.begin(), ids.end(), std::mt19937(11));
+  for (int j = 0; j < 500; ++j) {
+    const Vec3d at(-0.015 + 0.006 * (j % 5), -0.015 + 0.003 * (j / 5 % 10), -0.015 + 0.003 * (j / 50));
+    s.particles.push_back(test::particle(ids[std::size_t(2 * j)], 0.001, at, {0, slide, 0}));
+    s.particles.push_back(test::particle(ids[std::size_t(2 * j + 1)], 0.001, at + Vec3d(0.0019, 0, 0), {0, -slide, 0}));
+  }
+  s.time_step = 1e-6;  // well below the contact time (about 7e-5 s)
+  return s;
+}
+
+template <class T>
+bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+// The checkpoint file holds `sim`'s state now: its particles and history as
+// the simulation gives them directly (not through RunOutput's arrays).
+void expect_checkpoint_of(const std::string& file, const Simulation& sim, const std::string& what) {
+  const Checkpoint c = read_checkpoint(file);
+  const ParticleSnapshot s = sim.snapshot();
+  const HostHistory h = sim.history();
+  EXPECT_EQ(c.step, sim.step_count()) << what;
+  EXPECT_TRUE(same_bytes(c.particles.position, s.position)) << what;
+  EXPECT_TRUE(same_bytes(c.particles.velocity, s.velocity)) << what;
+  EXPECT_TRUE(same_bytes(c.particles.force, s.force)) << what;
+  EXPECT_TRUE(same_bytes(c.history.partner, h.partner)) << what;
+  EXPECT_TRUE(same_bytes(c.history.tangential, h.tangential)) << what;
+  const auto touching = std::count_if(h.partner.begin(), h.partner.end(), [](ParticleId p) { return p != kNoPartner; });
+  EXPECT_EQ(touching, 1000) << what << ": every sphere has its partner in its history";
+}
+
+// A checkpoint at the step of the last snapshot takes that snapshot's host
+// copy of the particles and copies only the history (while the snapshot's
+// file is written); any other state is copied anew: another simulation at
+// the same step, or the same one a step later.
+TEST_P(RunOutputTest, CheckpointAtTheSnapshotsStateTakesItsParticles) {
+  const std::string dir = testing::TempDir() + "/run_output_shared_" + backend_name(GetParam());
+  std::filesystem::remove_all(dir);
+  const SceneSpec scene = sliding_pairs_scene(dir, 0.05), other = sliding_pairs_scene(dir, -0.08);
+  RunOptions o;
+  o.backend = GetParam();
+  Simulation a(scene, o), b(other, o);
+  a.run(3);
+  b.run(3);
+  const std::unique_ptr<Transport> transport = make_single_transport();
+  RunOutput out(scene, dir, *transport, 0);
+  const std::string at_3 = dir + "/" + checkpoint_h5_name(3), at_4 = dir + "/" + checkpoint_h5_name(4);
+  out.snapshot(a);
+  out.checkpoint(a);
+  out.finish();
+  expect_checkpoint_of(at_3, a, "the snapshot's state");
+  out.snapshot(a);
+  out.checkpoint(b);
+  out.finish();
+  expect_checkpoint_of(at_3, b, "another simulation at the snapshot's step");
+  out.snapshot(a);
+  a.run(1);
+  out.checkpoint(a);
+  out.finish();
+  expect_checkpoint_of(at_4, a, "a step after the snapshot");
   std::filesystem::remove_all(dir);
 }
 
