@@ -7,7 +7,8 @@
 // LIGGGHTS comparison, bench/liggghts/README.md). Short runs (--steps 50)
 // time the dense bed, long ones mostly a loose, moving one; the output line
 // ends with the contacts per particle (walls included) after the timed steps
-// (-1 without friction, which keeps no contact history).
+// (-1 without friction, which keeps no contact history), then the Verlet
+// list's builds in the warm-up and the timed steps.
 //
 //   settle_bench [--n N] [--steps S] [--backend cpu|cuda] [--precision fp32|fp64|fp32_full]
 //                [--effects none|friction|rolling|cohesion] [--model linear|hertz]
@@ -177,11 +178,11 @@ int main(int argc, char** argv) {
     }
     std::printf("backend=%s n=%zu mesh=%s precision=%s effects=%u model=%s steps=%lld wall_s=%.3f "
                 "particle_steps_per_s=%.4g peak_bytes_per_particle=%.1f held_bytes_per_particle=%.1f "
-                "integrate_s=%.3f neighbours_s=%.3f forces_s=%.3f contacts_per_particle_at_end=%.2f\n",
+                "integrate_s=%.3f neighbours_s=%.3f forces_s=%.3f contacts_per_particle_at_end=%.2f list_builds=%lld\n",
                 gs::backend_name(o.run.backend), scene.particles.size(), o.mesh ? "impeller" : "none",
                 gs::precision_name(o.precision), o.effects, o.model == gs::ContactModel::linear ? "linear" : "hertz",
                 o.steps, wall, rate, bytes, double(sim.device_bytes()) / n, t.integrate, t.neighbours, t.forces,
-                contacts);
+                contacts, sim.neighbour_builds());
     if (o.digest) std::printf("state_digest=0x%016" PRIx64 "\n", gs::state_digest(sim.snapshot(), sim.history()));
     return 0;
   } catch (const std::exception& e) {
