@@ -5,6 +5,8 @@
 // kept in the staging buffer once the cell list is built (engine/pair_keep.hpp),
 // merged into the entries of each new list, and read as per-particle rows
 // (messages, checkpoints, output) while attached or detached.
+#include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <type_traits>
 
@@ -112,11 +114,15 @@ void PairCarry<Exec, Real>::list_building(const ParticleStore& s) {
   const DetachedContacts contacts{h.origin.data(),          Index(h.origin.size()),   h.carried_begin.data(),
                                   h.carried_partner.data(), h.carried.touching.data(), h.pending_partner.data(),
                                   st_.row_width};
+  // The contacts are among the old list's entries and the pending rows' (so
+  // the scan needs no check of its own for wrapping past 32-bit offsets).
+  const std::uint64_t bound = std::uint64_t(h.carried_partner.size()) + std::uint64_t(h.pending_partner.size());
+  if (bound > std::numeric_limits<ListOffset>::max())
+    throw std::runtime_error("the pair history kept across a list rebuild would hold 2^32 entries or more");
   h.kept_begin.resize_discarding(std::size_t(n) + 1);
   if (n == 0) h.kept_begin.zero();
   Exec::parallel_for(n, CountKept{contacts, h.kept_begin.data()});
-  const ListOffset total = Exec::scan_counts(h.kept_begin.data(), n, finder_.verlet().scan_scratch,
-                                             "the pair history kept across a list rebuild");
+  const ListOffset total = Exec::scan_counts(h.kept_begin.data(), n, finder_.verlet().scan_scratch, nullptr);
   kept_ = KeptLayout::of<Real>(total, st_.kept);
   st_.staging.resize_discarding(kept_.total);
   unsigned char* base = st_.staging.data();

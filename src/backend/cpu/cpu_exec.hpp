@@ -51,13 +51,16 @@ struct CpuExec {
 
   // Turns counts begin[1, n] into offsets (an in-place inclusive sum on the
   // calling thread; begin[0] = 0 is the caller's) and returns the total. A
-  // total of 2^32 or more would wrap past 32-bit offsets: refused, naming `what`.
+  // total of 2^32 or more would wrap past 32-bit offsets: refused, naming
+  // `what` (or a logic error where `what` is null: the caller bounded it).
   static ListOffset scan_counts(ListOffset* begin, Index n, DeviceArray<unsigned char>& /*scratch*/,
                                 const char* what) {
     std::uint64_t total = 0;
     for (Index i = 0; i < n; ++i) begin[i + 1] = ListOffset(total += begin[i + 1]);
-    if (total > std::numeric_limits<ListOffset>::max())
+    if (total > std::numeric_limits<ListOffset>::max()) {
+      if (what == nullptr) throw std::logic_error("a scan bounded below 2^32 passed it");
       throw std::runtime_error(std::string(what) + " would hold 2^32 entries or more (32-bit offsets)");
+    }
     return ListOffset(total);
   }
 

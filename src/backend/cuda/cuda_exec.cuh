@@ -108,7 +108,8 @@ struct CudaExec {
   // Turns counts begin[1, n] into offsets (an in-place inclusive sum; begin[0]
   // = 0 is the caller's) with CUB's storage in `scratch`, and returns the
   // total (read back: a build waits for the device anyway). A total of 2^32
-  // or more wraps past 32-bit offsets: refused, naming `what`.
+  // or more wraps past 32-bit offsets: refused, naming `what`; a null `what`
+  // skips that check (one more wait), for a caller that bounded the total.
   static ListOffset scan_counts(ListOffset* begin, Index n, DeviceArray<unsigned char>& scratch, const char* what) {
     if (n <= 0) return 0;
     std::size_t bytes = 0;
@@ -117,12 +118,14 @@ struct CudaExec {
     scratch.resize_discarding(kFlagBytes + bytes);
     int* wrapped = reinterpret_cast<int*>(scratch.data());
     GS_CUDA_CHECK(cub::DeviceScan::InclusiveSum(scratch.data() + kFlagBytes, bytes, begin + 1, begin + 1, n));
-    GS_CUDA_CHECK(cudaMemset(wrapped, 0, sizeof(int)));
-    any_kernel<<<unsigned((n + kBlock - 1) / kBlock), kBlock>>>(n, OffsetsWrapped{begin}, wrapped);
-    GS_CUDA_CHECK(cudaGetLastError());
-    int wrap = 0;
-    GS_CUDA_CHECK(cudaMemcpy(&wrap, wrapped, sizeof(int), cudaMemcpyDeviceToHost));
-    if (wrap != 0) throw std::runtime_error(std::string(what) + " would hold 2^32 entries or more (32-bit offsets)");
+    if (what != nullptr) {
+      GS_CUDA_CHECK(cudaMemset(wrapped, 0, sizeof(int)));
+      any_kernel<<<unsigned((n + kBlock - 1) / kBlock), kBlock>>>(n, OffsetsWrapped{begin}, wrapped);
+      GS_CUDA_CHECK(cudaGetLastError());
+      int wrap = 0;
+      GS_CUDA_CHECK(cudaMemcpy(&wrap, wrapped, sizeof(int), cudaMemcpyDeviceToHost));
+      if (wrap != 0) throw std::runtime_error(std::string(what) + " would hold 2^32 entries or more (32-bit offsets)");
+    }
     ListOffset total = 0;
     GS_CUDA_CHECK(cudaMemcpy(&total, begin + n, sizeof(ListOffset), cudaMemcpyDeviceToHost));
     return total;
