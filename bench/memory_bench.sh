@@ -3,7 +3,7 @@
 # particle with friction, 120 without; the largest frictional bed on one
 # H200 at least 4e8 particles, set up and run). From the repository root:
 #   [OUT=dir] [N=4000000] [LARGEST="400000000:12 400000000:10 360000000:12"] \
-#     bench/memory_bench.sh BUILD [BASE_BUILD]
+#     [REBUILDING="340000000 300000000"] bench/memory_bench.sh BUILD [BASE_BUILD]
 # BUILD, BASE_BUILD: CUDA build directories (src/grainstorm, bench/settle_bench),
 # e.g. this tree and main built beside it; BACKEND=cpu makes it a dry run on
 # the CPU (with small N and LARGEST). Results go to $OUT (default
@@ -21,8 +21,17 @@
 #     as wide) with BUILD: each of LARGEST's N:SLOTS (particles, contact_slots)
 #     in turn, 3 steps, until one runs; each try's outcome is reported (an
 #     out-of-memory is a clean error naming the size asked for).
+#  4. the largest frictional bed that rebuilds its list, with BUILD:
+#     settle_bench --n M --steps 30 --effects friction for each M of
+#     REBUILDING in turn (default none), until one runs (--contacts no: no
+#     host copy of the state at the end, which 128 GiB of host memory would
+#     not hold at 3e8 and more): a pressed lattice
+#     that loosens, its list rebuilt every few steps (list_builds) and
+#     re-sorted, at 5.7 contacts per sphere at its first rebuilds; its peak
+#     bytes per particle.
 # About 3-4 minutes on an H200 (most of it the largest bed's set-up); a
-# try that would start with less than 60 s of the 300 s budget left is skipped.
+# try that would start with less than 60 s of the budget (BUDGET_S, default
+# 300) left is skipped.
 set -uo pipefail
 root=$(pwd)
 absolute() { [[ $1 == /* ]] && echo "$1" || echo "$root/$1"; }
@@ -113,5 +122,21 @@ for try in $largest; do
     break
   fi
   say "$count particles, $slots slots: failed (exit $rc): $(grep -iE "error|memory" "$log" | head -2 | tr '\n' ' ')"
+done
+rebuilding=${REBUILDING:-}
+[[ -n $rebuilding ]] && say "== largest frictional bed that rebuilds its list, with BUILD (settle_bench, 30 steps)"
+for m in $rebuilding; do
+  if (($(left) < 60)); then say "$m particles: skipped (budget)"; continue; fi
+  log=$OUT/rebuilding_$m.log
+  timeout $(($(left) - 10)) "$build/bench/settle_bench" --backend "$backend" --n "$m" --steps 30 --effects friction \
+    --contacts no > "$log" 2>&1
+  rc=$?
+  line=$(grep -oE "peak_bytes_per_particle=[0-9.]+ held_bytes_per_particle=[0-9.]+" "$log" | head -1)
+  builds=$(grep -oE "list_builds=[0-9]+" "$log" | head -1)
+  if [[ $rc == 0 && -n $line ]]; then
+    say "$m particles: RAN, $line $builds"
+    break
+  fi
+  say "$m particles: failed (exit $rc): $(grep -iE "error|memory" "$log" | head -2 | tr '\n' ' ')"
 done
 say "total $SECONDS s"

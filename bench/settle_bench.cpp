@@ -7,12 +7,15 @@
 // LIGGGHTS comparison, bench/liggghts/README.md). Short runs (--steps 50)
 // time the dense bed, long ones mostly a loose, moving one; the output line
 // ends with the contacts per particle (walls included) after the timed steps
-// (-1 without friction, which keeps no contact history).
+// (-1 without friction, which keeps no contact history, or with --contacts no), then the Verlet
+// list's builds in the warm-up and the timed steps.
 //
 //   settle_bench [--n N] [--steps S] [--backend cpu|cuda] [--precision fp32|fp64|fp32_full]
 //                [--effects none|friction|rolling|cohesion] [--model linear|hertz]
 //                [--mesh impeller]   (the seed's impeller turning at 30 rpm in the bed)
 //                [--skin S]          (Verlet list skin in largest diameters, default 0.1)
+//                [--contacts no]     (skip the count of contacts at the end, a host copy of the
+//                                     whole state: the largest beds, whose host memory it would pass)
 //                [--digest yes]      (then print the final state's digest: the same for any build
 //                                     that computes the same bits)
 #include <chrono>
@@ -43,6 +46,7 @@ struct Options {
   gs::ContactModel model = gs::ContactModel::linear;
   bool mesh = false;  // the seed's impeller turning at 30 rpm in the bed
   bool digest = false;  // print the final state's digest (io/state_digest.hpp) after the timing
+  bool contacts = true;  // count the contacts per particle at the end (a host snapshot)
   gs::RunOptions run{gs::default_backend()};  // backend and Verlet skin
 };
 
@@ -74,6 +78,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--model") o.model = v == "hertz" ? gs::ContactModel::hertz_mindlin : gs::ContactModel::linear;
     else if (a == "--mesh") o.mesh = v == "impeller";
     else if (a == "--digest") o.digest = v == "yes";
+    else if (a == "--contacts") o.contacts = v != "no";
     else if (a == "--skin") o.run.verlet_skin = std::stod(v);
     else throw std::invalid_argument("unknown option " + a);
   }
@@ -169,7 +174,7 @@ int main(int argc, char** argv) {
     const gs::StepTimings t = sim.timings();
     // What the timed steps ended with: the bed loosens as it runs (see the top).
     double contacts = -1;
-    if (gs::keeps_history(o.model, o.effects)) {
+    if (o.contacts && gs::keeps_history(o.model, o.effects)) {
       const gs::ParticleSnapshot end = sim.snapshot();
       contacts = 0;
       for (std::uint16_t c : end.contacts) contacts += c;
@@ -177,11 +182,11 @@ int main(int argc, char** argv) {
     }
     std::printf("backend=%s n=%zu mesh=%s precision=%s effects=%u model=%s steps=%lld wall_s=%.3f "
                 "particle_steps_per_s=%.4g peak_bytes_per_particle=%.1f held_bytes_per_particle=%.1f "
-                "integrate_s=%.3f neighbours_s=%.3f forces_s=%.3f contacts_per_particle_at_end=%.2f\n",
+                "integrate_s=%.3f neighbours_s=%.3f forces_s=%.3f contacts_per_particle_at_end=%.2f list_builds=%lld\n",
                 gs::backend_name(o.run.backend), scene.particles.size(), o.mesh ? "impeller" : "none",
                 gs::precision_name(o.precision), o.effects, o.model == gs::ContactModel::linear ? "linear" : "hertz",
                 o.steps, wall, rate, bytes, double(sim.device_bytes()) / n, t.integrate, t.neighbours, t.forces,
-                contacts);
+                contacts, sim.neighbour_builds());
     if (o.digest) std::printf("state_digest=0x%016" PRIx64 "\n", gs::state_digest(sim.snapshot(), sim.history()));
     return 0;
   } catch (const std::exception& e) {

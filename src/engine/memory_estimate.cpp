@@ -21,30 +21,34 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
 #undef GS_ADD_FIELD
   m.force_bytes = 3 * real;                                   // force
   if (makes_torques(scene.effects)) m.force_bytes += 3 * real;  // torque
-  const unsigned kept = history_fields_kept(scene.model, scene.effects);
-  if (kept != 0) {
+  const unsigned fields_kept = history_fields_kept(scene.model, scene.effects);
+  double kept = 0;  // the kept contacts at a rebuild, per particle
+  if (fields_kept != 0) {
     double springs = 0;  // one contact's history fields
     const bool wide = real == 8;
 #define GS_ADD_FIELD(name, value, bit) \
-  if (kept & (bit)) springs += wide ? sizeof(value<double>) : sizeof(value<float>);
+  if (fields_kept & (bit)) springs += wide ? sizeof(value<double>) : sizeof(value<float>);
     GS_HISTORY_FIELDS(GS_ADD_FIELD)
 #undef GS_ADD_FIELD
     // Surface slots of a partner id and the springs; a touching flag and the
     // springs per list entry (engine/pair_history.hpp).
     const double entry = sizeof(std::uint8_t) + springs;
     m.history_bytes = (sizeof(ParticleId) + springs) * scene.surface_slots + entry * kEstimatedListEntries;
-    // At a rebuild after the store changed, the old list (offsets, entries
-    // turned into ids) and its entries' springs wait beside the new ones to
-    // be merged, with each particle's origin row.
-    m.rebuild_bytes = sizeof(ListOffset) + (sizeof(Index) + entry) * kEstimatedListEntries + sizeof(Index);
+    // At a rebuild, each particle's touching contacts (a partner id and the
+    // springs; here every entry touches) wait in the staging buffer for the
+    // new list (engine/pair_keep.hpp), beside the old list with each
+    // particle's origin row and the kept table's offsets.
+    kept = (sizeof(ParticleId) + springs) * kEstimatedListEntries;
+    m.rebuild_bytes = sizeof(Index) + sizeof(ListOffset);
   }
   // Verlet list: offsets, fp32 reference positions, entries; the cell
   // list's order of the particles (neighbor/verlet_list.hpp, cell_list.hpp).
   m.list_bytes = sizeof(Index) + sizeof(Vec3f) + sizeof(Index) * kEstimatedListEntries + sizeof(Index);
   // The staging buffer at its largest: a gather of the widest field (a
-  // position) when memory is re-sorted, or the sort's keys and second
-  // buffers while the cell list is built (engine/step_state.hpp).
-  m.staging_bytes = std::max<double>(sizeof(Vec3d), 2 * sizeof(std::uint64_t) + sizeof(Index));
+  // position) when memory is re-sorted, the sort's keys and second buffers
+  // while the cell list is built, or the kept contacts at a rebuild
+  // (engine/step_state.hpp).
+  m.staging_bytes = std::max({double(sizeof(Vec3d)), double(2 * sizeof(std::uint64_t) + sizeof(Index)), kept});
   m.bytes_per_particle =
       m.field_bytes + m.force_bytes + m.history_bytes + m.list_bytes + m.staging_bytes + m.rebuild_bytes;
   const double r = largest_radius(scene);

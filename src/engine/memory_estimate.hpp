@@ -13,9 +13,9 @@ struct MemoryEstimate {
   double field_bytes = 0;         // particle state (core/particle_fields.hpp), per particle
   double force_bytes = 0;         // force and torque, per particle
   double history_bytes = 0;       // contact history: surface slots and pair entries, per particle
-  double rebuild_bytes = 0;       // the pair history's old table beside the new at a list rebuild, per particle
+  double rebuild_bytes = 0;       // beside the lists at a rebuild: origin rows and kept offsets, per particle
   double list_bytes = 0;          // Verlet list and the cell list's order, per particle
-  double staging_bytes = 0;       // the staging buffer at its largest, per particle
+  double staging_bytes = 0;       // the staging buffer at its largest (the kept contacts), per particle
   double cell_bytes = 0;          // cell tables
   long long cells = 0;
   double mesh_bytes = 0;          // mesh arrays and their binning (a bound, walls/mesh.hpp)
@@ -25,12 +25,13 @@ struct MemoryEstimate {
 };
 
 // What a run of this scene holds in device memory at its peak, by the layout
-// of ParticleStore, the force arrays, the contact history (and its old
-// table beside the new at a list rebuild: engine/pair_history.hpp), the Verlet and
-// cell lists (kEstimatedListEntries entries per particle), the staging
-// buffer that also holds the sort's buffers, and the meshes with their
-// binning, at the smallest cells a run uses (one largest diameter: the most
-// cells). docs/PERFORMANCE.md ("Bytes per particle") lists the same parts.
+// of ParticleStore, the force arrays, the contact history, the Verlet and
+// cell lists (kEstimatedListEntries entries per particle, all touching), the
+// staging buffer that also holds the sort's buffers and, at a list rebuild,
+// the pair history's kept contacts (engine/pair_keep.hpp), and the meshes
+// with their binning, at the smallest cells a run uses (one largest
+// diameter: the most cells). docs/PERFORMANCE.md ("Bytes per particle")
+// lists the same parts.
 MemoryEstimate estimate_memory(const SceneSpec& scene);
 
 }  // namespace gs

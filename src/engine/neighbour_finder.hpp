@@ -14,11 +14,13 @@
 namespace gs {
 
 // Told when the Verlet list is about to be replaced or invalidated (it still
-// describes the store it was built on, unless the store changed since) and
-// when a new one is built: the pair history (engine/pair_carry.hpp) keeps
-// its springs per list entry.
+// describes the store it was built on, unless the store changed since), when
+// a new one is about to be built (the cell list is built: the staging buffer
+// is free until the new list is) and when it is built: the pair history
+// (engine/pair_carry.hpp) keeps its springs per list entry.
 struct ListFollower {
   virtual void list_replacing(const ParticleStore& s) = 0;
+  virtual void list_building(const ParticleStore& s) = 0;
   virtual void list_built(const ParticleStore& s) = 0;
 
  protected:
@@ -43,6 +45,7 @@ class NeighbourFinder final : public NeighbourSearch {
   void build(const ParticleStore& s, const CellGrid& grid, double skin) override {
     build_cell_list(s, grid);
     if constexpr (Exec::verlet_list) {
+      if (follower_) follower_->list_building(s);
       build_verlet_list<Exec>(verlet_, cells_, s.position.data(), s.radius.data(), s.id.data(), s.n_owned, s.size(),
                               skin);
       built_at_ = s.revision;

@@ -1,13 +1,18 @@
 #pragma once
 // PairCarry: the particle-pair history (engine/pair_history.hpp) carried
 // across what changes the store and the Verlet list, on an execution policy:
-// detached before the store changes or the list is replaced, merged into
-// the entries of each new list, and read as per-particle rows (messages,
-// checkpoints, output) in either state.
+// detached before the store changes or the list is replaced, its contacts
+// kept in the staging buffer once the cell list is built (engine/pair_keep.hpp),
+// merged into the entries of each new list, and read as per-particle rows
+// (messages, checkpoints, output) while attached or detached.
+#include <cstdint>
+#include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 #include "engine/gather.hpp"
 #include "engine/neighbour_finder.hpp"
+#include "engine/pair_keep.hpp"
 #include "engine/step_state.hpp"
 
 namespace gs {
@@ -23,6 +28,7 @@ class PairCarry final : public StoreObserver, public ListFollower {
 
   void store_changing(const ParticleStore& s) override { detach(s); }
   void list_replacing(const ParticleStore& s) override { detach(s); }
+  void list_building(const ParticleStore& s) override;
   void list_built(const ParticleStore& s) override;
 
   // Detached: every owned particle [0, n) has an origin (none where it had not).
@@ -74,6 +80,7 @@ class PairCarry final : public StoreObserver, public ListFollower {
 
   StepState<Real>& st_;
   NeighbourFinder<Exec>& finder_;
+  KeptLayout kept_;  // the kept table in the staging buffer, from list_building to list_built
 };
 
 // The list still describes the store: its entries become the partners' ids
@@ -94,24 +101,40 @@ void PairCarry<Exec, Real>::detach(const ParticleStore& s) {
   v.valid = false;
 }
 
+// Detached, the cell list built and the Verlet list not yet: each owned
+// particle's contacts go to the kept table, and the detached tables are
+// freed before the new list and its entries are allocated, so the old and
+// the new tables are never held at once.
 template <class Exec, class Real>
-void PairCarry<Exec, Real>::list_built(const ParticleStore& s) {
+void PairCarry<Exec, Real>::list_building(const ParticleStore& s) {
   if (!st_.keeps_history()) return;
-  s.observer = this;
   PairHistory<Real>& h = st_.pairs;
-  const VerletList& v = finder_.verlet();
-  const std::size_t entries = v.list.size();
-  h.current.resize_discarding(entries, st_.kept);
-  const MergeSources sources{v.begin.data(),         v.list.data(),           s.id.data(),
-                             h.origin.data(),        Index(h.origin.size()),  h.carried_begin.data(),
-                             h.carried_partner.data(), h.pending_partner.data(), st_.row_width};
-  Exec::parallel_for(v.n_owned, MergeTouching{sources, h.carried.touching.data(), h.current.touching.data()});
-#define GS_MERGE_FIELD(name, value, bit)                                                         \
-  if (st_.kept & (bit))                                                                          \
-    Exec::parallel_for(v.n_owned, MergeField<value<Real>>{sources, h.carried.name.data(), h.pending.name.data(), \
-                                                          h.current.name.data()});
-  GS_HISTORY_FIELDS(GS_MERGE_FIELD)
-#undef GS_MERGE_FIELD
+  if (h.attached) throw std::logic_error("the pair history was not detached before the list's build");
+  const Index n = s.n_owned;
+  const DetachedContacts contacts{h.origin.data(),          Index(h.origin.size()),   h.carried_begin.data(),
+                                  h.carried_partner.data(), h.carried.touching.data(), h.pending_partner.data(),
+                                  st_.row_width};
+  // The contacts are among the old list's entries and the pending rows' (so
+  // the scan needs no check of its own for wrapping past 32-bit offsets).
+  const std::uint64_t bound = std::uint64_t(h.carried_partner.size()) + std::uint64_t(h.pending_partner.size());
+  if (bound > std::numeric_limits<ListOffset>::max())
+    throw std::runtime_error("the pair history kept across a list rebuild would hold 2^32 entries or more");
+  h.kept_begin.resize_discarding(std::size_t(n) + 1);
+  if (n == 0) h.kept_begin.zero();
+  Exec::parallel_for(n, CountKept{contacts, h.kept_begin.data()});
+  const ListOffset total = Exec::scan_counts(h.kept_begin.data(), n, finder_.verlet().scan_scratch, nullptr);
+  kept_ = KeptLayout::of<Real>(total, st_.kept);
+  st_.staging.resize_discarding(kept_.total);
+  unsigned char* base = st_.staging.data();
+  Exec::parallel_for(n, KeepPartners{contacts, h.kept_begin.data(), reinterpret_cast<ParticleId*>(base + kept_.partner)});
+  int f = 0;
+  for_each_history_field(h.carried, h.pending, [&](const char*, unsigned bit, const auto& carried, const auto& pending) {
+    using T = typename std::decay_t<decltype(carried)>::value_type;
+    if (st_.kept & bit)
+      Exec::parallel_for(n, KeepField<T>{contacts, h.kept_begin.data(), carried.data(), pending.data(),
+                                         reinterpret_cast<T*>(base + kept_.field[f])});
+    ++f;
+  });
   h.carried.free();
   h.carried_begin = DeviceArray<ListOffset>(Exec::backend);
   h.carried_partner = DeviceArray<Index>(Exec::backend);
@@ -119,6 +142,29 @@ void PairCarry<Exec, Real>::list_built(const ParticleStore& s) {
   h.pending_partner = DeviceArray<ParticleId>(Exec::backend);
   h.pending.free();
   h.pending_rows = 0;
+}
+
+// The new list's entries take their springs from the kept table.
+template <class Exec, class Real>
+void PairCarry<Exec, Real>::list_built(const ParticleStore& s) {
+  if (!st_.keeps_history()) return;
+  s.observer = this;
+  PairHistory<Real>& h = st_.pairs;
+  const VerletList& v = finder_.verlet();
+  h.current.resize_discarding(v.list.size(), st_.kept);
+  unsigned char* base = st_.staging.data();
+  const KeptSources sources{v.begin.data(), v.list.data(), s.id.data(), h.kept_begin.data(),
+                            reinterpret_cast<const ParticleId*>(base + kept_.partner)};
+  Exec::parallel_for(v.n_owned, MergeKeptTouching{sources, h.current.touching.data()});
+  int f = 0;
+  for_each_history_field(h.current, [&](const char*, unsigned bit, auto& to) {
+    using T = typename std::decay_t<decltype(to)>::value_type;
+    if (st_.kept & bit)
+      Exec::parallel_for(v.n_owned, MergeKeptField<T>{sources, reinterpret_cast<const T*>(base + kept_.field[f]),
+                                                      to.data()});
+    ++f;
+  });
+  h.kept_begin = DeviceArray<ListOffset>(Exec::backend);
   h.attached = true;
 }
 

@@ -15,10 +15,12 @@
 // rank or from the host (insertion, restart) bring a row of (partner id,
 // springs) as messages and checkpoints hold it (width contact_slots), kept
 // verbatim in `pending` until the build; inserted particles have none.
-// At the build each particle's new entries (ascending partner id) take their
-// springs from its carried row (ascending partner id too: a merge) or its
-// pending row (a search of its few entries); the rest start from zero.
-// The carried and pending tables are then freed.
+// At the build, once the cell list is built, each particle's touching
+// contacts are copied from its carried or pending row into the kept table
+// (ascending partner id; in the staging buffer: engine/pair_keep.hpp) and
+// the carried and pending tables are freed; then the new list is built and
+// each particle's new entries (ascending partner id) take their springs from
+// its kept contacts (a merge); the rest start from zero.
 //
 // Contacts with walls and mesh features stay in a small slot table per
 // particle (contact/contact_slots.hpp, `surface_slots` of them), which moves
@@ -95,7 +97,14 @@ struct PairEntries {
 template <class Real>
 struct PairHistory {
   explicit PairHistory(Backend b)
-      : current(b), carried_begin(b), carried_partner(b), carried(b), origin(b), pending_partner(b), pending(b) {}
+      : current(b),
+        carried_begin(b),
+        carried_partner(b),
+        carried(b),
+        origin(b),
+        pending_partner(b),
+        pending(b),
+        kept_begin(b) {}
 
   bool attached = false;         // current follows the finder's list
   PairEntries<Real> current;     // per list entry
@@ -107,10 +116,13 @@ struct PairHistory {
   DeviceArray<ParticleId> pending_partner;  // rows of `width` entries
   PairEntries<Real> pending;                // the same rows' fields (touching unused)
   Index pending_rows = 0;
+  // During a build: the kept table's offsets, per owned particle + 1 (its
+  // contacts lie in the staging buffer: engine/pair_keep.hpp).
+  DeviceArray<ListOffset> kept_begin;
 
   std::size_t bytes() const {
     return current.bytes() + carried_begin.bytes() + carried_partner.bytes() + carried.bytes() + origin.bytes() +
-           pending_partner.bytes() + pending.bytes();
+           pending_partner.bytes() + pending.bytes() + kept_begin.bytes();
   }
 };
 
@@ -134,65 +146,6 @@ struct Fill {
   T* to;
   T value;
   GS_HD void operator()(Index i) const { to[i] = value; }
-};
-
-// Where each new list entry of owned particle i finds its springs: f(k,
-// source, at) with source 0 (none: zero springs), 1 (carried entry `at`) or
-// 2 (pending entry `at`).
-struct MergeSources {
-  const ListOffset* begin;
-  const Index* list;
-  const ParticleId* id;
-  const Index* origin;
-  Index n_origin;
-  const ListOffset* carried_begin;
-  const Index* carried_partner;
-  const ParticleId* pending_partner;
-  int width;
-  template <class F>
-  GS_HD void for_each(Index i, const F& f) const {
-    const Index o = i < n_origin ? origin[i] : kNoOrigin;
-    ListOffset c = 0, c_end = 0;
-    if (o >= 0 && o < kPendingBase) c = carried_begin[o], c_end = carried_begin[o + 1];
-    for (ListOffset k = begin[i]; k < begin[i + 1]; ++k) {
-      const ParticleId partner = id[list[k]];
-      if (o >= kPendingBase) {
-        const std::size_t row = std::size_t(o - kPendingBase) * std::size_t(width);
-        int s = 0;
-        while (s < width && pending_partner[row + std::size_t(s)] != partner) ++s;
-        if (s < width) f(k, 2, row + std::size_t(s));
-        else f(k, 0, std::size_t(0));
-      } else {
-        while (c < c_end && static_cast<ParticleId>(carried_partner[c]) < partner) ++c;
-        if (c < c_end && static_cast<ParticleId>(carried_partner[c]) == partner) f(k, 1, std::size_t(c));
-        else f(k, 0, std::size_t(0));
-      }
-    }
-  }
-};
-
-template <class T>
-struct MergeField {
-  MergeSources sources;
-  const T* carried;
-  const T* pending;
-  T* to;
-  GS_HD void operator()(Index i) const {
-    sources.for_each(i, [&](ListOffset k, int source, std::size_t at) {
-      to[k] = source == 1 ? carried[at] : source == 2 ? pending[at] : T{};
-    });
-  }
-};
-
-struct MergeTouching {
-  MergeSources sources;
-  const std::uint8_t* carried;
-  std::uint8_t* to;
-  GS_HD void operator()(Index i) const {
-    sources.for_each(i, [&](ListOffset k, int source, std::size_t at) {
-      to[k] = source == 1 ? carried[at] : source == 2 ? std::uint8_t(1) : std::uint8_t(0);
-    });
-  }
 };
 
 // Where a row's entries come from.

@@ -42,7 +42,9 @@ struct StepState {
   // (neighbor/cell_list.hpp): allocating device memory every step would cost
   // more than the copies, and one buffer for all of them keeps only the
   // largest at the peak. It holds nothing from one call to the next: a user
-  // must be done with it (on the stream) before it returns.
+  // must be done with it (on the stream) before it returns; one exception,
+  // within a build of the neighbour lists, the pair history's kept contacts
+  // from the cell list's build to the Verlet list's (engine/pair_keep.hpp).
   DeviceArray<unsigned char> staging;
 };
 

@@ -5,7 +5,9 @@
 // keys, fp64 list references), shows as bytes per particle it cannot account for.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "backend/memory.hpp"
 #include "engine/memory_estimate.hpp"
@@ -14,10 +16,11 @@
 namespace gs::test {
 namespace {
 
-// A simple-cubic lattice of side^3 touching spheres of 1 mm radius, no walls
-// and no gravity: each sphere has its face neighbours within the skin (2 mm
-// apart; the next are 2.83 mm away), 6 side^3 - 6 side^2 list entries in all.
-SceneSpec lattice_scene(int side, unsigned effects) {
+// A simple-cubic lattice of side^3 spheres of 1 mm radius, `spacing` apart
+// (default: 1 um gaps, so none touch), no walls and no gravity: each sphere
+// has its face neighbours within the skin (the next are 2.83 mm away),
+// 6 side^3 - 6 side^2 list entries in all.
+SceneSpec lattice_scene(int side, unsigned effects, double spacing = 0.002001) {
   SceneSpec scene = base_scene(2500, 2000, 0.5, 0.5);
   scene.precision = Precision::fp32;
   scene.effects = effects;
@@ -29,7 +32,8 @@ SceneSpec lattice_scene(int side, unsigned effects) {
   for (int z = 0; z < side; ++z)
     for (int y = 0; y < side; ++y)
       for (int x = 0; x < side; ++x)
-        scene.particles.push_back(particle(id++, 0.001, {-0.015 + 0.002 * x, -0.015 + 0.002 * y, -0.015 + 0.002 * z}));
+        scene.particles.push_back(
+            particle(id++, 0.001, {-0.015 + spacing * x, -0.015 + spacing * y, -0.015 + spacing * z}));
   return scene;
 }
 
@@ -38,27 +42,30 @@ SceneSpec lattice_scene(int side, unsigned effects) {
 // 24 each, orientation 16; fp32 force and torque 12 each; 4 surface slots
 // of a 4-byte partner id and a 12-byte spring, and per list entry a
 // touching flag and a spring (13); Verlet list offsets 4, fp32 reference 12,
-// 12 entries of 4; the cell order 4; staging 24 (a position); at a rebuild
-// the old table: offsets 4, 12 entries of an id and a pair entry, origin 4.
+// 12 entries of 4; the cell order 4; staging: at a rebuild the kept
+// contacts, 12 of a partner id and a spring (192; without history a
+// position's 24); beside them the origin rows and the kept offsets, 4 each.
 TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   const MemoryEstimate m = estimate_memory(lattice_scene(2, kFriction));
   EXPECT_EQ(m.field_bytes, 4 + 1 + 1 + 3 * 4 + 3 * 24 + 16);
   EXPECT_EQ(m.force_bytes, 24);
   EXPECT_EQ(m.history_bytes, 4 * (4 + 12) + 12 * 13);
   EXPECT_EQ(m.list_bytes, 4 + 12 + 12 * 4 + 4);
-  EXPECT_EQ(m.staging_bytes, 24);
-  EXPECT_EQ(m.rebuild_bytes, 4 + 12 * (4 + 13) + 4);
-  EXPECT_EQ(m.bytes_per_particle, 106 + 24 + 220 + 68 + 24 + 212);
+  EXPECT_EQ(m.staging_bytes, 12 * (4 + 12));
+  EXPECT_EQ(m.rebuild_bytes, 4 + 4);
+  EXPECT_EQ(m.bytes_per_particle, 106 + 24 + 220 + 68 + 192 + 8);
   const MemoryEstimate none = estimate_memory(lattice_scene(2, 0));
   EXPECT_EQ(none.history_bytes, 0);
   EXPECT_EQ(none.force_bytes, 12);  // no torque without friction
   EXPECT_EQ(none.bytes_per_particle, 106 + 12 + 68 + 24);
 }
 
-// The peak of a CPU run of `scene` over `steps` steps, per particle, and its
-// neighbour builds.
+// The peak of a CPU run of `scene` over `steps` steps, per particle, what
+// the run then holds, its pair contacts at the end and its neighbour builds.
 struct Measured {
   double bytes_per_particle = 0;
+  double held_per_particle = 0;
+  double contacts_per_particle = 0;
   long long builds = 0;
 };
 Measured measure(const SceneSpec& scene, long long steps) {
@@ -66,19 +73,27 @@ Measured measure(const SceneSpec& scene, long long steps) {
   const std::size_t before = backend_peak_bytes(Backend::cpu);
   Simulation sim(scene, RunOptions{Backend::cpu});
   sim.run(steps);
-  return {double(backend_peak_bytes(Backend::cpu) - before) / double(sim.particle_count()), sim.neighbour_builds()};
+  const double n = double(sim.particle_count());
+  Measured got{double(backend_peak_bytes(Backend::cpu) - before) / n, double(sim.device_bytes()) / n, 0,
+               sim.neighbour_builds()};
+  long long contacts = 0;
+  for (const std::uint16_t c : sim.snapshot().contacts) contacts += c;
+  got.contacts_per_particle = double(contacts) / n;
+  return got;
 }
 
 // The run's peak against the estimate with the lattice's own list entries
 // (the estimate assumes 12), each 4 bytes in the list and, with friction, 13
-// of pair history. A static bed is never re-sorted, so its staging buffer
-// holds only the sort's 20 bytes, and builds its list once (nothing to carry
-// over); a bed drifting as one body (the same neighbours throughout)
-// rebuilds its list every 20 steps and is re-sorted at the rebuild after
-// step 25, so the buffer holds a position's 24, and at each rebuild the old
-// pair table waits beside the new. A sort buffer held apart from the staging
-// buffer, or a buffer grown by copying (its old and new storage at once),
-// shows as 20 bytes or more.
+// of pair history, and its own touching contacts (the estimate assumes 12)
+// kept in the staging buffer at a rebuild, 16 bytes each. A static bed is
+// never re-sorted, so its staging buffer holds the sort's 20 bytes, and
+// builds its list once (nothing to carry over); a bed drifting as one body
+// (the same neighbours throughout) rebuilds its list every 20 steps and is
+// re-sorted at the rebuild after step 25, so the buffer holds a position's
+// 24, and at each rebuild the origin rows and the kept offsets wait beside
+// the lists. A sort buffer held apart from the staging buffer, a buffer
+// grown by copying (its old and new storage at once), or the old list's
+// table held beside the new shows as 20 bytes or more.
 TEST(MemoryEstimate, MatchesTheRunsPeakOnTheCpu) {
   const int side = 16;
   const double entries = 6.0 - 6.0 / side;
@@ -94,16 +109,46 @@ TEST(MemoryEstimate, MatchesTheRunsPeakOnTheCpu) {
         EXPECT_GE(got.builds, 2);
       }
       const double missing = kEstimatedListEntries - entries, pair_entry = effects != 0 ? 1 + 12 : 0;
-      double expected = m.bytes_per_particle - missing * (4 + pair_entry);
-      if (drift) expected -= effects != 0 ? missing * (4 + pair_entry) : 0;
-      else expected -= m.rebuild_bytes + (24 - 20);
+      EXPECT_EQ(got.contacts_per_particle, 0);  // so the kept contacts take no room
+      const double staging = drift ? 24 : 20;
+      double expected = m.bytes_per_particle - missing * (4 + pair_entry) - (m.staging_bytes - staging);
+      if (!drift && effects != 0) expected -= m.rebuild_bytes - 4;  // its one build: the kept offsets beside the new list
       // Within the cell offsets (the estimate's cells, one diameter, are more
       // than the run's) and a byte per particle: the fault flag, the pair
       // table, alignment.
       EXPECT_GE(got.bytes_per_particle, expected) << "effects " << effects << ", drift " << drift;
       EXPECT_LT(got.bytes_per_particle, expected + m.cell_bytes / double(scene.particles.size()) + 1)
-          << "effects " << effects << ", drift " << drift;
+          << "effects " << effects << ", drift " << drift << ", builds " << got.builds << ", contacts "
+          << got.contacts_per_particle << ", held " << got.held_per_particle;
     }
+}
+
+// A rebuild keeps only the touching contacts, in the staging buffer, and
+// frees the old list's table before the new list is built: a periodic
+// lattice pressed 20 um into each of its 6 neighbours (balanced, so the same
+// contacts throughout), drifting as one body, rebuilt every 20 steps. Its
+// peak is what it holds, with the staging buffer at 6 contacts of 16 bytes,
+// plus the origin rows and the kept offsets (8): the estimate with 6 entries
+// and 6 contacts instead of 12. Held beside the new list, the old list's
+// table (17 bytes per entry and its offsets) adds 110 bytes per particle.
+TEST(MemoryEstimate, RebuildHoldsTheTouchingContactsOnly) {
+  const int side = 12;
+  const double spacing = 0.00198;
+  SceneSpec scene = lattice_scene(side, kFriction, spacing);
+  scene.periodic_axes = 7;
+  scene.domain_min = {-0.015 - 0.5 * spacing, -0.015 - 0.5 * spacing, -0.015 - 0.5 * spacing};
+  scene.domain_max = {scene.domain_min.x + side * spacing, scene.domain_min.y + side * spacing,
+                      scene.domain_min.z + side * spacing};
+  for (ParticleInit& p : scene.particles) p.velocity = {0.5, 0, 0};
+  const MemoryEstimate m = estimate_memory(scene);
+  const Measured got = measure(scene, 60);
+  EXPECT_GE(got.builds, 3);
+  ASSERT_EQ(got.contacts_per_particle, 6);
+  const double entries = 6, contacts = 6, missing = kEstimatedListEntries - entries;
+  const double expected = m.bytes_per_particle - missing * (4 + 1 + 12) - (m.staging_bytes - contacts * (4 + 12));
+  EXPECT_GE(got.bytes_per_particle, expected);
+  EXPECT_LT(got.bytes_per_particle, expected + m.cell_bytes / double(scene.particles.size()) + 1)
+      << "builds " << got.builds << ", held " << got.held_per_particle;
 }
 
 // At a snapshot or checkpoint the particles touching a wall are selected with

@@ -1,5 +1,10 @@
 #pragma once
 // CPU execution policy: OpenMP over particles, an O(N) radix sort for keys.
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
 #include "backend/backend.hpp"
 #include "backend/device_array.hpp"
 #include "core/history_layout.hpp"
@@ -49,6 +54,21 @@ struct CpuExec {
     for (Index i = 0; i < n; ++i)
       if (pred(i)) out[m++] = i;
     return m;
+  }
+
+  // Turns counts begin[1, n] into offsets (an in-place inclusive sum on the
+  // calling thread; begin[0] = 0 is the caller's) and returns the total. A
+  // total of 2^32 or more would wrap past 32-bit offsets: refused, naming
+  // `what` (or a logic error where `what` is null: the caller bounded it).
+  static ListOffset scan_counts(ListOffset* begin, Index n, DeviceArray<unsigned char>& /*scratch*/,
+                                const char* what) {
+    std::uint64_t total = 0;
+    for (Index i = 0; i < n; ++i) begin[i + 1] = ListOffset(total += begin[i + 1]);
+    if (total > std::numeric_limits<ListOffset>::max()) {
+      if (what == nullptr) throw std::logic_error("a scan bounded below 2^32 passed it");
+      throw std::runtime_error(std::string(what) + " would hold 2^32 entries or more (32-bit offsets)");
+    }
+    return ListOffset(total);
   }
 
   // Fills v.begin and v.list: the neighbours of particles [0, n_owned) among

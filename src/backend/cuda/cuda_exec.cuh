@@ -1,6 +1,7 @@
 #pragma once
 // CUDA execution policy: one thread per particle, CUB radix sort for keys.
 #include <stdexcept>
+#include <string>
 #include <type_traits>
 
 #include <cub/device/device_radix_sort.cuh>
@@ -130,6 +131,32 @@ struct CudaExec {
     return m;
   }
 
+  // Turns counts begin[1, n] into offsets (an in-place inclusive sum; begin[0]
+  // = 0 is the caller's) with CUB's storage in `scratch`, and returns the
+  // total (read back: a build waits for the device anyway). A total of 2^32
+  // or more wraps past 32-bit offsets: refused, naming `what`; a null `what`
+  // skips that check (one more wait), for a caller that bounded the total.
+  static ListOffset scan_counts(ListOffset* begin, Index n, DeviceArray<unsigned char>& scratch, const char* what) {
+    if (n <= 0) return 0;
+    std::size_t bytes = 0;
+    GS_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, bytes, begin + 1, begin + 1, n));
+    constexpr std::size_t kFlagBytes = 256;  // the wrap flag first, CUB's storage aligned after it
+    scratch.resize_discarding(kFlagBytes + bytes);
+    int* wrapped = reinterpret_cast<int*>(scratch.data());
+    GS_CUDA_CHECK(cub::DeviceScan::InclusiveSum(scratch.data() + kFlagBytes, bytes, begin + 1, begin + 1, n));
+    if (what != nullptr) {
+      GS_CUDA_CHECK(cudaMemset(wrapped, 0, sizeof(int)));
+      any_kernel<<<unsigned((n + kBlock - 1) / kBlock), kBlock>>>(n, OffsetsWrapped{begin}, wrapped);
+      GS_CUDA_CHECK(cudaGetLastError());
+      int wrap = 0;
+      GS_CUDA_CHECK(cudaMemcpy(&wrap, wrapped, sizeof(int), cudaMemcpyDeviceToHost));
+      if (wrap != 0) throw std::runtime_error(std::string(what) + " would hold 2^32 entries or more (32-bit offsets)");
+    }
+    ListOffset total = 0;
+    GS_CUDA_CHECK(cudaMemcpy(&total, begin + n, sizeof(ListOffset), cudaMemcpyDeviceToHost));
+    return total;
+  }
+
   // Fills v.begin and v.list: the neighbours of particles [0, n_owned) among
   // `cells`, each particle's in ascending id. Two passes over the cells
   // (count, fill) around an in-place inclusive scan of the counts; the total
@@ -144,22 +171,7 @@ struct CudaExec {
       return;
     }
     parallel_for(n_owned, ListCountKernel{cells, near, begin});
-    std::size_t bytes = 0;
-    GS_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, bytes, begin + 1, begin + 1, n_owned));
-    constexpr std::size_t kFlagBytes = 256;  // the wrap flag first, CUB's storage aligned after it
-    v.scan_scratch.resize_discarding(kFlagBytes + bytes);
-    int* wrapped = reinterpret_cast<int*>(v.scan_scratch.data());
-    GS_CUDA_CHECK(cub::DeviceScan::InclusiveSum(v.scan_scratch.data() + kFlagBytes, bytes, begin + 1, begin + 1,
-                                                n_owned));
-    // Read back at the build, as the total is: a build waits for the device anyway.
-    GS_CUDA_CHECK(cudaMemset(wrapped, 0, sizeof(int)));
-    any_kernel<<<unsigned((n_owned + kBlock - 1) / kBlock), kBlock>>>(n_owned, OffsetsWrapped{begin}, wrapped);
-    GS_CUDA_CHECK(cudaGetLastError());
-    int wrap = 0;
-    GS_CUDA_CHECK(cudaMemcpy(&wrap, wrapped, sizeof(int), cudaMemcpyDeviceToHost));
-    if (wrap != 0) throw std::runtime_error("the Verlet list would hold 2^32 entries or more (32-bit offsets)");
-    ListOffset total = 0;
-    GS_CUDA_CHECK(cudaMemcpy(&total, begin + n_owned, sizeof(ListOffset), cudaMemcpyDeviceToHost));
+    const ListOffset total = scan_counts(begin, n_owned, v.scan_scratch, "the Verlet list");
     v.list.resize_discarding(std::size_t(total));  // rewritten whole: no copy of the old
     parallel_for(n_owned, ListFillKernel{cells, near, id, begin, v.list.data()});
   }
