@@ -46,29 +46,12 @@ use_carried_deps "$root"
 } > "$log" 2>&1
 say "base tree: ${base:-none (this tree against itself)}"
 
-after=build-history before=build-history
-if [[ -n ${AFTER_BUILD:-} ]]; then
-  after=$AFTER_BUILD before=${BEFORE_BUILD:-$AFTER_BUILD}
-else
-  cores=$(nproc)
-  build() {  # SOURCE BUILD_DIR JOBS
-    ( cmake -S "$1" -B "$2" -DCMAKE_BUILD_TYPE=Release -DGS_ENABLE_CUDA=ON "${extra[@]}" &&
-      cmake --build "$2" -j "$3" --target grainstorm settle_bench ) > "$OUT/build_$(basename "$2").log" 2>&1
-  }
-  build . build-history "$cores" &
-  after_pid=$!
-  if [[ -n $base ]]; then
-    build "$base" build-history-base "$((cores / 2))" &
-    base_pid=$!
-  fi
-  if ! wait $after_pid; then
-    say "BUILD FAILED (build_build-history.log):"; tail -40 "$OUT/build_build-history.log" | tee -a "$log"; exit 1
-  fi
-  if [[ -n $base ]]; then
-    if wait "$base_pid"; then before=build-history-base
-    else say "BASE BUILD FAILED: this tree alone"; tail -20 "$OUT/build_build-history-base.log" >> "$log"; fi
-  fi
+after=${AFTER_BUILD:-} before=${BEFORE_BUILD:-}
+if [[ -z $after ]]; then
+  source "$root/bench/build_pair.sh"
+  build_pair build-history "$base" grainstorm settle_bench || exit 1
 fi
+before=${before:-$after}  # no base: this tree against itself
 say "builds: $before against $after"
 
 # 1. Bytes per particle, exact, and the digests of both builds.

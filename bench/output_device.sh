@@ -43,26 +43,10 @@ use_carried_deps "$root"
 } > "$log" 2>&1
 say "base tree: ${base:-none (this tree alone)}"
 
-after=${AFTER_BUILD:-build-output} before=${BEFORE_BUILD:-}
-if [[ -z ${AFTER_BUILD:-} ]]; then
-  cores=$(nproc)
-  build() {  # SOURCE BUILD_DIR JOBS
-    ( cmake -S "$1" -B "$2" -DCMAKE_BUILD_TYPE=Release -DGS_ENABLE_CUDA=ON "${extra[@]}" &&
-      cmake --build "$2" -j "$3" --target grainstorm output_bench ) > "$OUT/build_$(basename "$2").log" 2>&1
-  }
-  build . build-output "$cores" &
-  after_pid=$!
-  if [[ -n $base ]]; then
-    build "$base" build-output-base "$((cores / 2))" &
-    base_pid=$!
-  fi
-  if ! wait $after_pid; then
-    say "BUILD FAILED (build_build-output.log):"; tail -40 "$OUT/build_build-output.log" | tee -a "$log"; exit 1
-  fi
-  if [[ -n $base ]]; then
-    if wait "$base_pid"; then before=build-output-base
-    else say "BASE BUILD FAILED: this tree alone"; tail -20 "$OUT/build_build-output-base.log" >> "$log"; fi
-  fi
+after=${AFTER_BUILD:-} before=${BEFORE_BUILD:-}
+if [[ -z $after ]]; then
+  source "$root/bench/build_pair.sh"
+  build_pair build-output "$base" grainstorm output_bench || exit 1
 fi
 say "builds: ${before:-none} against $after"
 
