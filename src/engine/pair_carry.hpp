@@ -111,9 +111,7 @@ void PairCarry<Exec, Real>::list_building(const ParticleStore& s) {
   PairHistory<Real>& h = st_.pairs;
   if (h.attached) throw std::logic_error("the pair history was not detached before the list's build");
   const Index n = s.n_owned;
-  const DetachedContacts contacts{h.origin.data(),          Index(h.origin.size()),   h.carried_begin.data(),
-                                  h.carried_partner.data(), h.carried.touching.data(), h.pending_partner.data(),
-                                  st_.row_width};
+  const DetachedContacts contacts{h.detached_tables(), st_.row_width};
   // The contacts are among the old list's entries and the pending rows' (so
   // the scan needs no check of its own for wrapping past 32-bit offsets).
   const std::uint64_t bound = std::uint64_t(h.carried_partner.size()) + std::uint64_t(h.pending_partner.size());
@@ -214,12 +212,7 @@ ContactRows PairCarry<Exec, Real>::rows(const ParticleStore& s) const {
   r.list = v.list.data();
   r.id = s.id.data();
   r.current_touching = h.current.touching.data();
-  r.origin = h.origin.data();
-  r.n_origin = Index(h.origin.size());
-  r.carried_begin = h.carried_begin.data();
-  r.carried_partner = h.carried_partner.data();
-  r.carried_touching = h.carried.touching.data();
-  r.pending_partner = h.pending_partner.data();
+  r.detached = h.detached_tables();
   r.surface_partner = surface.partner.data();
   r.strides = surface.strides;
   r.surface_slots = surface.slots;

@@ -94,6 +94,20 @@ struct PairEntries {
   }
 };
 
+// The detached tables as kernels read them: per owned particle its origin
+// (a carried row, kPendingBase + a pending row, or none), the carried rows'
+// offsets, partner ids and touching flags, and the pending rows' partners.
+struct DetachedTables {
+  const Index* origin;
+  Index n_origin;
+  const ListOffset* carried_begin;
+  const Index* carried_partner;
+  const std::uint8_t* carried_touching;
+  const ParticleId* pending_partner;
+
+  GS_HD Index origin_of(Index i) const { return i < n_origin ? origin[i] : kNoOrigin; }
+};
+
 template <class Real>
 struct PairHistory {
   explicit PairHistory(Backend b)
@@ -119,6 +133,11 @@ struct PairHistory {
   // During a build: the kept table's offsets, per owned particle + 1 (its
   // contacts lie in the staging buffer: engine/pair_keep.hpp).
   DeviceArray<ListOffset> kept_begin;
+
+  DetachedTables detached_tables() const {
+    return {origin.data(),          Index(origin.size()),    carried_begin.data(),
+            carried_partner.data(), carried.touching.data(), pending_partner.data()};
+  }
 
   std::size_t bytes() const {
     return current.bytes() + carried_begin.bytes() + carried_partner.bytes() + carried.bytes() + origin.bytes() +
@@ -163,13 +182,7 @@ struct ContactRows {
   const Index* list;
   const ParticleId* id;
   const std::uint8_t* current_touching;
-  // detached
-  const Index* origin;
-  Index n_origin;
-  const ListOffset* carried_begin;
-  const Index* carried_partner;
-  const std::uint8_t* carried_touching;
-  const ParticleId* pending_partner;
+  DetachedTables detached;
   // walls and mesh features
   const ParticleId* surface_partner;
   HistoryStrides strides;
@@ -186,20 +199,21 @@ struct ContactRows {
       for (ListOffset k = begin[i]; k < begin[i + 1]; ++k)
         if (current_touching[k]) put(kFromCurrent, std::size_t(k), id[list[k]]);
     } else {
-      const Index o = i < n_origin ? origin[i] : kNoOrigin;
+      const Index o = detached.origin_of(i);
       if (o >= kPendingBase) {
         const std::size_t row = std::size_t(o - kPendingBase) * std::size_t(width);
         int n = 0;
         for (int s = 0; s < width; ++s) {
-          const ParticleId p = pending_partner[row + std::size_t(s)];
+          const ParticleId p = detached.pending_partner[row + std::size_t(s)];
           f(s, kFromPending, row + std::size_t(s), p);
           n += p != kNoPartner;
         }
         return n;
       }
       if (o >= 0)
-        for (ListOffset c = carried_begin[o]; c < carried_begin[o + 1]; ++c)
-          if (carried_touching[c]) put(kFromCarried, std::size_t(c), static_cast<ParticleId>(carried_partner[c]));
+        for (ListOffset c = detached.carried_begin[o]; c < detached.carried_begin[o + 1]; ++c)
+          if (detached.carried_touching[c])
+            put(kFromCarried, std::size_t(c), static_cast<ParticleId>(detached.carried_partner[c]));
     }
     for (int s = 0; s < surface_slots; ++s) {
       const std::size_t at = strides.at(s, std::size_t(i));

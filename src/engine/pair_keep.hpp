@@ -28,17 +28,12 @@ namespace gs {
 // `at`) or kFromPending (pending entry `at`). Surface contacts of a pending
 // row (already in the slot table) and empty entries are left out.
 struct DetachedContacts {
-  const Index* origin;
-  Index n_origin;
-  const ListOffset* carried_begin;
-  const Index* carried_partner;
-  const std::uint8_t* carried_touching;
-  const ParticleId* pending_partner;
+  DetachedTables tables;
   int width;
 
   template <class F>
   GS_HD int for_each(Index i, const F& f) const {
-    const Index o = i < n_origin ? origin[i] : kNoOrigin;
+    const Index o = tables.origin_of(i);
     int n = 0;
     if (o >= kPendingBase) {
       // A row as it arrived: its entries in any order; a dozen, so a selection.
@@ -49,7 +44,7 @@ struct DetachedContacts {
         int best = -1;
         ParticleId p_best = 0;
         for (int s = 0; s < width; ++s) {
-          const ParticleId p = pending_partner[row + std::size_t(s)];
+          const ParticleId p = tables.pending_partner[row + std::size_t(s)];
           if (p == kNoPartner || p >= kMeshPartnerBase || (any && p <= last)) continue;
           if (best < 0 || p < p_best) best = s, p_best = p;
         }
@@ -61,9 +56,9 @@ struct DetachedContacts {
       }
     }
     if (o >= 0)
-      for (ListOffset c = carried_begin[o]; c < carried_begin[o + 1]; ++c)
-        if (carried_touching[c]) {
-          f(int(kFromCarried), std::size_t(c), static_cast<ParticleId>(carried_partner[c]));
+      for (ListOffset c = tables.carried_begin[o]; c < tables.carried_begin[o + 1]; ++c)
+        if (tables.carried_touching[c]) {
+          f(int(kFromCarried), std::size_t(c), static_cast<ParticleId>(tables.carried_partner[c]));
           ++n;
         }
     return n;

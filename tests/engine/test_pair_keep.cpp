@@ -27,8 +27,9 @@ struct Detached {
   std::vector<ParticleId> pending_partner{7, kWallPartnerBase + 2, 4, kNoPartner, 6};
   std::vector<float> pending_spring{70, 99, 40, 0, 60};
   DetachedContacts contacts() const {
-    return {origin.data(),          Index(origin.size()),     carried_begin.data(), carried_partner.data(),
-            carried_touching.data(), pending_partner.data(), 5};
+    const DetachedTables tables{origin.data(),          Index(origin.size()),    carried_begin.data(),
+                                carried_partner.data(), carried_touching.data(), pending_partner.data()};
+    return {tables, 5};
   }
 };
 
