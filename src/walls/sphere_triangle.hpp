@@ -199,67 +199,123 @@ GS_HD GS_INLINE double mesh_coincidence_tolerance(const Vec3d& x, double radius)
 
 namespace detail {
 // (d', rank', t') < (d, rank, t): a strict total order on reports.
-GS_HD GS_INLINE bool report_precedes(const ClosestPoint& a, std::int32_t ta, const ClosestPoint& b, std::int32_t tb) {
-  if (a.distance != b.distance) return a.distance < b.distance;
-  const int ra = feature_rank(a.feature), rb = feature_rank(b.feature);
+GS_HD GS_INLINE bool precedes(double da, std::uint8_t fa, std::int32_t ta, double db, std::uint8_t fb,
+                              std::int32_t tb) {
+  if (da != db) return da < db;
+  const int ra = feature_rank(fa), rb = feature_rank(fb);
   if (ra != rb) return ra < rb;
   return ta < tb;
 }
+GS_HD GS_INLINE bool report_precedes(const ClosestPoint& a, std::int32_t ta, const ClosestPoint& b, std::int32_t tb) {
+  return precedes(a.distance, a.feature, ta, b.distance, b.feature, tb);
+}
 
-// The rule (top of this file) for the report r of triangle t: false when
-// another report within reach makes it redundant.
-GS_HD GS_INLINE bool keep_mesh_report(const MeshView& m, const std::int32_t* list, std::int32_t count, const Vec3d& x,
-                                      double radius, double tol2, std::int32_t t, const ClosestPoint& r) {
-  const bool on_face = r.feature == kFace;
-  const bool on_edge = is_edge_feature(r.feature);
+// The report r of triangle t as the rule weighs it: its feature's edge id (or
+// -1) and its one or two vertices (unused for a face).
+struct Report {
+  std::int32_t t;
+  ClosestPoint r;
+  bool on_face, on_edge;
+  std::int32_t v0, v1, edge;
+  int rank;
+};
+GS_HD GS_INLINE Report make_report(const MeshView& m, std::int32_t t, const ClosestPoint& r) {
+  Report p{t, r, r.feature == kFace, is_edge_feature(r.feature), 0, 0, -1, feature_rank(r.feature)};
   const MeshCorners& tc = m.corners[t];
-  // The feature: its edge id (or -1) and its one or two vertices (unused for a face).
-  const int k0 = on_edge ? r.feature - kEdge0 : (on_face ? 0 : r.feature - kVertex0);
-  const std::int32_t v0 = tc.v[k0];
-  const std::int32_t v1 = on_edge ? tc.v[(k0 + 1) % 3] : v0;
-  const std::int32_t edge = on_edge ? m.edges[t].e[k0] : -1;
-  const int rank = feature_rank(r.feature);
-  for (std::int32_t k = 0; k < count; ++k) {
-    const std::int32_t u = list[k];
-    if (u == t || !m.shares_vertex(u, t)) continue;
-    const ClosestPoint o = triangle_closest_point(m, u, x);
-    if (!(o.distance < radius)) continue;
-    const int other_rank = feature_rank(o.feature);
-    // S: the same point, found again by a neighbour; the face, else the lowest index, reports it.
-    if (norm2(o.point - r.point) <= tol2) {
-      if (other_rank < rank || (other_rank == rank && u < t)) return false;
-      continue;
-    }
-    // F: a nearer report of a neighbour whose contact normal is within the
-    // crease angle (the sphere sits in a shallow concave crease of a
-    // tessellated curved surface): one smooth surface, the nearer one reports.
-    if (m.crease_cos && m.mesh && o.distance > 0 && report_precedes(o, u, r, t) &&
-        dot(contact_normal(m, t, r, x), contact_normal(m, u, o, x)) > m.crease_cos[m.mesh[t]])
-      return false;
-    if (on_face || !(on_edge ? m.has_edge(u, edge) : m.has_vertex(u, v0))) continue;
-    // u contains the edge or vertex of r, and its closest point is elsewhere.
-    if (o.feature == kFace) return false;  // B1
-    const MeshCorners& uc = m.corners[u];
-    if (is_edge_feature(o.feature)) {
-      const int j = o.feature - kEdge0;
-      if (on_edge && m.edges[u].e[j] == edge) {  // B2
-        if (u < t) return false;
-        continue;
-      }
-      if (!on_edge && (uc.v[j] == v0 || uc.v[(j + 1) % 3] == v0)) return false;  // B1: an edge through the vertex
-    } else {
-      const std::int32_t w = uc.v[o.feature - kVertex0];
-      if (!on_edge && w == v0) {  // B2
-        if (u < t) return false;
-        continue;
-      }
-      if (on_edge && (w == v0 || w == v1)) continue;  // an end of the edge: no objection
-    }
-    if (report_precedes(o, u, r, t)) return false;  // B3
+  const int k0 = p.on_edge ? r.feature - kEdge0 : (p.on_face ? 0 : r.feature - kVertex0);
+  p.v0 = tc.v[k0];
+  p.v1 = p.on_edge ? tc.v[(k0 + 1) % 3] : p.v0;
+  p.edge = p.on_edge ? m.edges[t].e[k0] : -1;
+  return p;
+}
+
+// Whether triangle u's report drops the report p (the rule at the top of
+// this file). Each triangle's objection stands alone: the rule keeps a report
+// that no triangle objects to, in whatever order they are asked.
+GS_HD GS_INLINE bool objects(const MeshView& m, const Vec3d& x, double radius, double tol2, const Report& p,
+                             std::int32_t u) {
+  const std::int32_t t = p.t;
+  if (u == t || !m.shares_vertex(u, t)) return false;
+  const ClosestPoint o = triangle_closest_point(m, u, x);
+  if (!(o.distance < radius)) return false;
+  const int other_rank = feature_rank(o.feature);
+  // S: the same point, found again by a neighbour; the face, else the lowest index, reports it.
+  if (norm2(o.point - p.r.point) <= tol2) return other_rank < p.rank || (other_rank == p.rank && u < t);
+  // F: a nearer report of a neighbour whose contact normal is within the
+  // crease angle (the sphere sits in a shallow concave crease of a
+  // tessellated curved surface): one smooth surface, the nearer one reports.
+  if (m.crease_cos && m.mesh && o.distance > 0 && report_precedes(o, u, p.r, t) &&
+      dot(contact_normal(m, t, p.r, x), contact_normal(m, u, o, x)) > m.crease_cos[m.mesh[t]])
+    return true;
+  if (p.on_face || !(p.on_edge ? m.has_edge(u, p.edge) : m.has_vertex(u, p.v0))) return false;
+  // u contains the edge or vertex of r, and its closest point is elsewhere.
+  if (o.feature == kFace) return true;  // B1
+  const MeshCorners& uc = m.corners[u];
+  if (is_edge_feature(o.feature)) {
+    const int j = o.feature - kEdge0;
+    if (p.on_edge && m.edges[u].e[j] == p.edge) return u < t;                                   // B2
+    if (!p.on_edge && (uc.v[j] == p.v0 || uc.v[(j + 1) % 3] == p.v0)) return true;  // B1: an edge through the vertex
+  } else {
+    const std::int32_t w = uc.v[o.feature - kVertex0];
+    if (!p.on_edge && w == p.v0) return u < t;            // B2
+    if (p.on_edge && (w == p.v0 || w == p.v1)) return false;  // an end of the edge: no objection
+  }
+  return report_precedes(o, u, p.r, t);  // B3
+}
+
+// The rule for the report r of triangle t: false when another report within
+// reach makes it redundant. Triangle `first` of the list (-1: none) is asked
+// before the others (NearestReport says why).
+GS_HD GS_INLINE bool keep_mesh_report(const MeshView& m, const std::int32_t* list, std::int32_t count, const Vec3d& x,
+                                      double radius, double tol2, std::int32_t t, const ClosestPoint& r,
+                                      std::int32_t first) {
+  const Report p = make_report(m, t, r);
+  for (std::int32_t k = first >= 0 ? -1 : 0; k < count; ++k) {  // k = -1: `first`
+    const std::int32_t u = k < 0 ? first : list[k];
+    if ((k < 0 || u != first) && objects(m, x, radius, tol2, p, u)) return false;
   }
   return true;
 }
 }  // namespace detail
+
+// The first of the reports within reach in the rule's total order (nearest,
+// then face before edge before vertex, then lowest index), which the rule
+// asks first: it objects to most of the others (under a flat fan, the face
+// report to every edge and vertex report around the centre), which are then
+// dropped after one closest point instead of a scan of the list. A sphere
+// under the centre of the mixer impeller's hub, 64 triangles in reach,
+// scanned the cell's 64-100 for each report: a thread of 6,000 closest points
+// per step, and mixer case b's step 4-5 times longer (docs/PERFORMANCE.md, "A
+// sphere under the hub's centre").
+struct NearestReport {
+  double distance = 0;
+  std::uint8_t feature = kFace;
+  std::int32_t t = -1;  // none yet
+  GS_HD void consider(double d, std::uint8_t f, std::int32_t u) {
+    if (t >= 0 && !detail::precedes(d, f, u, distance, feature, t)) return;
+    distance = d;
+    feature = f;
+    t = u;
+  }
+};
+
+// The triangle of list[0..count) with the nearest report within reach of the
+// sphere (x, radius), or -1. A pass of its own, so that its state is not held
+// through the listing of the triangles in reach (registers of the force kernel).
+GS_HD GS_INLINE std::int32_t nearest_report(const MeshView& m, const std::int32_t* list, std::int32_t count,
+                                            const Vec3d& x, double radius) {
+  NearestReport nearest;
+  for (std::int32_t k = 0; k < count; ++k) {
+    const ClosestPoint r = triangle_closest_point(m, list[k], x);
+    if (r.distance < radius) nearest.consider(r.distance, r.feature, list[k]);
+  }
+  return nearest.t;
+}
+
+// With this many triangles in reach or fewer the rule asks them in list
+// order: a report then costs one closest point at most, which the pass that
+// finds the nearest would not save.
+constexpr int kMeshAskNearestFrom = 2;
 
 // How many triangles within reach for_each_mesh_contact_in lists apart; with
 // more in reach it scans the whole cell list.
@@ -268,12 +324,14 @@ constexpr int kMeshInReachCap = 16;
 // Whether triangle t of list[0..count) reports a contact of the sphere (x,
 // radius), r being its closest point: within reach, with a normal, and not
 // made redundant by another report (the rule at the top of this file).
+// `first`: the nearest report's triangle, a member of the list (any member,
+// or -1, gives the same answer, sooner or later).
 GS_HD GS_INLINE bool mesh_report_kept(const MeshView& m, const std::int32_t* list, std::int32_t count,
                                       const Vec3d& x, double radius, double tol2, std::int32_t t,
-                                      const ClosestPoint& r) {
+                                      const ClosestPoint& r, std::int32_t first) {
   if (!(r.distance < radius)) return false;
   if (r.feature != kFace && !(r.distance > 0)) return false;  // centre on an edge or corner: no normal
-  return detail::keep_mesh_report(m, list, count, x, radius, tol2, t, r);
+  return detail::keep_mesh_report(m, list, count, x, radius, tol2, t, r, first);
 }
 
 // The contact that triangle t reports at its closest point r to the sphere
@@ -295,7 +353,7 @@ GS_HD GS_INLINE MeshContact mesh_contact(const MeshView& m, std::int32_t t, cons
 // Calls visit(const MeshContact&) for each contact of the sphere (x, radius)
 // with the triangles list[0..count), which must hold, ascending, every
 // triangle within `radius` of x (a cell's list from bin_triangles does).
-// Contacts come in ascending triangle order. (engine/force_group.hpp does
+// Contacts come in ascending triangle order. (walls/sphere_triangle_group.hpp does
 // the same with a group of GPU lanes; keep the two in step.)
 template <class Visitor>
 GS_HD void for_each_mesh_contact_in(const MeshView& m, const std::int32_t* list, std::int32_t count, const Vec3d& x,
@@ -317,12 +375,13 @@ GS_HD void for_each_mesh_contact_in(const MeshView& m, const std::int32_t* list,
     list = in_reach;
     count = n_in_reach;
   }
+  const std::int32_t first = count > kMeshAskNearestFrom ? nearest_report(m, list, count, x, radius) : -1;
   const double tol = mesh_coincidence_tolerance(x, radius);
   const double tol2 = tol * tol;
   for (std::int32_t k = 0; k < count; ++k) {
     const std::int32_t t = list[k];
     const ClosestPoint r = triangle_closest_point(m, t, x);
-    if (mesh_report_kept(m, list, count, x, radius, tol2, t, r)) visit(mesh_contact(m, t, r, x, radius));
+    if (mesh_report_kept(m, list, count, x, radius, tol2, t, r, first)) visit(mesh_contact(m, t, r, x, radius));
   }
 }
 

@@ -4,12 +4,38 @@
 // cell's triangles g.size at a time, and the rule's reports likewise; the
 // contacts, the same as for_each_mesh_contact finds, in the same order, are
 // visited on lane 0 alone. A Group has `size` and `rank` (0 for the leader),
-// leader(), and ballot(bool): the lanes' votes as bits 0..size-1, on every
-// lane (backend/cuda/lane_group.cuh).
+// leader(), ballot(bool): the lanes' votes as bits 0..size-1, on every lane,
+// and shuffle(v, from): lane `from`'s v (backend/cuda/lane_group.cuh).
 #include "core/bits.hpp"
 #include "walls/sphere_triangle.hpp"
 
 namespace gs {
+
+// The nearest report over the group (each lane's own, on entry), on every lane.
+template <class Group>
+GS_HD void nearest_over_group(const Group& g, NearestReport& nearest) {
+  for (int step = 1; step < g.size; step <<= 1) {
+    const int from = g.rank ^ step;
+    const double distance = g.shuffle(nearest.distance, from);
+    const std::uint8_t feature = std::uint8_t(g.shuffle(int(nearest.feature), from));
+    const std::int32_t t = g.shuffle(nearest.t, from);
+    if (t >= 0) nearest.consider(distance, feature, t);
+  }
+}
+
+// nearest_report (walls/sphere_triangle.hpp) by the group's lanes, the
+// answer on every lane.
+template <class Group>
+GS_HD std::int32_t nearest_report_in_group(const MeshView& m, const std::int32_t* list, std::int32_t count,
+                                           const Vec3d& x, double radius, const Group& g) {
+  NearestReport nearest;
+  for (std::int32_t k = g.rank; k < count; k += g.size) {
+    const ClosestPoint r = triangle_closest_point(m, list[k], x);
+    if (r.distance < radius) nearest.consider(r.distance, r.feature, list[k]);
+  }
+  nearest_over_group(g, nearest);
+  return nearest.t;
+}
 
 template <class Group, class Visitor>
 GS_HD void for_each_mesh_contact_in_group(const MeshView& m, const std::int32_t* list, std::int32_t count,
@@ -30,12 +56,15 @@ GS_HD void for_each_mesh_contact_in_group(const MeshView& m, const std::int32_t*
     list = in_reach;
     count = n_in_reach;
   }
+  const std::int32_t nearest = count > kMeshAskNearestFrom ? nearest_report_in_group(m, list, count, x, radius, g) : -1;
   const double tol = mesh_coincidence_tolerance(x, radius);
   const double tol2 = tol * tol;
   for (std::int32_t first = 0; first < count; first += g.size) {
     const std::int32_t k = first + g.rank;
     bool kept = false;
-    if (k < count) kept = mesh_report_kept(m, list, count, x, radius, tol2, list[k], triangle_closest_point(m, list[k], x));
+    if (k < count)
+      kept = mesh_report_kept(m, list, count, x, radius, tol2, list[k], triangle_closest_point(m, list[k], x),
+                              nearest);
     unsigned keep = g.ballot(kept);
     if (!g.leader()) continue;
     for (; keep != 0; keep &= keep - 1) {

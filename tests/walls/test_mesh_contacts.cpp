@@ -131,6 +131,88 @@ TEST(MeshContacts, HighValenceFan) {
   EXPECT_TRUE(few && many);
 }
 
+// Spheres of mixer case b (1.05 mm) wedged under the reference impeller's hub,
+// whose bottom is a fan of 64 triangles around the axis, at 0 to 3 mm from
+// it, with the triangles within three radii as their cell's list.
+std::vector<Vec3d> spheres_under_the_hub() {
+  std::vector<Vec3d> x;
+  for (double r : {0.0, 2e-5, 9e-5, 4.6e-4, 1e-3, 1.5e-3, 3e-3})
+    for (int k = 0; k < 7; ++k) x.push_back(Vec3d(r * std::cos(0.9 * k + 0.1), r * std::sin(0.9 * k + 0.1), -1e-3));
+  return x;
+}
+std::vector<std::int32_t> cell_list(const MeshView& m, std::int32_t n, const Vec3d& x, double reach) {
+  std::vector<std::int32_t> list;
+  for (std::int32_t t = 0; t < n; ++t)
+    if (triangle_closest_point(m, t, x).distance < reach) list.push_back(t);
+  return list;
+}
+
+// The rule asks the nearest report's triangle first (NearestReport): the
+// contacts are those of the rule asking the list in its order.
+TEST(MeshContacts, NearestReportFirstKeepsTheContacts) {
+  const MeshSet set = test::single_mesh_set(make_impeller());
+  const MeshView m = set.view();
+  const double radius = 1.05e-3;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> offset(-1.2 * radius, 1.2 * radius);
+  std::vector<Vec3d> spheres = spheres_under_the_hub();
+  for (int q = 0; q < 200; ++q) {  // and near the blades, hub and shaft
+    const MeshCorners& c = set.corners[std::size_t(q * 7919 % set.n_triangles())];
+    spheres.push_back((set.vertex[std::size_t(c.v[0])] + set.vertex[std::size_t(c.v[1])] +
+                       set.vertex[std::size_t(c.v[2])]) * (1.0 / 3) + Vec3d(offset(rng), offset(rng), offset(rng)));
+  }
+  int contacts = 0, beyond_cap = 0;
+  for (const Vec3d& x : spheres) {
+    const std::vector<std::int32_t> list = cell_list(m, set.n_triangles(), x, 3 * radius);
+    const std::int32_t n = std::int32_t(list.size());
+    std::vector<MeshContact> found;
+    auto collect = [&](const MeshContact& c) { found.push_back(c); };
+    for_each_mesh_contact_in(m, list.data(), n, x, radius, collect);
+    const double tol = mesh_coincidence_tolerance(x, radius);
+    std::vector<std::int32_t> in_order;  // the rule, asking the whole list in order
+    int in_reach = 0;
+    for (std::int32_t t : list) {
+      const ClosestPoint r = triangle_closest_point(m, t, x);
+      in_reach += r.distance < radius;
+      if (mesh_report_kept(m, list.data(), n, x, radius, tol * tol, t, r, -1)) in_order.push_back(t);
+    }
+    beyond_cap += in_reach > kMeshInReachCap;
+    ASSERT_EQ(found.size(), in_order.size()) << "sphere at " << x.x << " " << x.y << " " << x.z;
+    for (std::size_t k = 0; k < found.size(); ++k) EXPECT_EQ(found[k].triangle, in_order[k]);
+    contacts += int(found.size());
+  }
+  EXPECT_GT(contacts, 150);
+  EXPECT_GT(beyond_cap, 0);  // the scan of the whole list too
+}
+
+// Why asking the nearest report first pays: under the hub's fan the nearest
+// report alone drops every other report in reach, so each costs one closest
+// point, not a scan of the 64 to 100 triangles of its cell.
+TEST(MeshContacts, UnderAFanTheNearestReportDropsTheOthers) {
+  const MeshSet set = test::single_mesh_set(make_impeller());
+  const MeshView m = set.view();
+  const double radius = 1.05e-3;
+  int dropped = 0;
+  for (const Vec3d& x : spheres_under_the_hub()) {
+    const std::vector<std::int32_t> list = cell_list(m, set.n_triangles(), x, 3 * radius);
+    NearestReport nearest;
+    for (std::int32_t t : list) {
+      const ClosestPoint r = triangle_closest_point(m, t, x);
+      if (r.distance < radius) nearest.consider(r.distance, r.feature, t);
+    }
+    ASSERT_GE(nearest.t, 0);
+    const double tol = mesh_coincidence_tolerance(x, radius);
+    for (std::int32_t t : list) {
+      const ClosestPoint r = triangle_closest_point(m, t, x);
+      if (t == nearest.t || !(r.distance < radius)) continue;
+      EXPECT_TRUE(detail::objects(m, x, radius, tol * tol, detail::make_report(m, t, r), nearest.t))
+          << "triangle " << t << " under the hub at " << x.x << " " << x.y;
+      ++dropped;
+    }
+  }
+  EXPECT_GT(dropped, 7 * 64);  // the spheres at the axis see the whole fan
+}
+
 TEST(MeshContacts, ConvexCubeEdgesAndCorners) {
   const MeshSet set = test::single_mesh_set(make_box(Vec3d(), Vec3d(1, 0, 0), Vec3d(0, 1, 0), Vec3d(0.5, 0.5, 0.5)));
   struct Case {

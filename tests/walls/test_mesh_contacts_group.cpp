@@ -8,10 +8,12 @@
 
 #include <algorithm>
 #include <condition_variable>
+#include <cstdint>
 #include <cstring>
 #include <mutex>
 #include <random>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include "mesh_test_helpers.hpp"
@@ -21,10 +23,10 @@
 namespace gs {
 namespace {
 
-// What the lanes of one group share: their votes and a barrier.
+// What the lanes of one group share: their votes, their shuffled values and a barrier.
 class Votes {
  public:
-  explicit Votes(int lanes) : votes_(std::size_t(lanes)), lanes_(lanes) {}
+  explicit Votes(int lanes) : votes_(std::size_t(lanes)), values_(std::size_t(lanes)), lanes_(lanes) {}
   // Every lane's vote, once all have voted; each lane calls it equally often.
   unsigned ballot(int rank, bool vote) {
     votes_[std::size_t(rank)] = vote;
@@ -33,6 +35,17 @@ class Votes {
     for (int r = 0; r < lanes_; ++r) bits |= unsigned(votes_[std::size_t(r)]) << r;
     wait();  // nobody votes again before everyone has read this round
     return bits;
+  }
+  // Lane `from`'s v, once all lanes have given theirs; each lane calls it equally often.
+  template <class T>
+  T shuffle(int rank, T v, int from) {
+    static_assert(sizeof(T) <= sizeof(std::uint64_t) && std::is_trivially_copyable_v<T>, "one register's worth");
+    std::memcpy(&values_[std::size_t(rank)], &v, sizeof v);
+    wait();
+    T out;
+    std::memcpy(&out, &values_[std::size_t(from)], sizeof out);
+    wait();
+    return out;
   }
 
  private:
@@ -48,6 +61,7 @@ class Votes {
     }
   }
   std::vector<char> votes_;
+  std::vector<std::uint64_t> values_;
   int lanes_;
   int arrived_ = 0;
   long long round_ = 0;
@@ -61,6 +75,10 @@ struct ThreadLane {
   Votes* votes;
   bool leader() const { return rank == 0; }
   unsigned ballot(bool vote) const { return votes->ballot(rank, vote); }
+  template <class T>
+  T shuffle(T v, int from) const {
+    return votes->shuffle(rank, v, from);
+  }
 };
 
 // The contacts of the sphere (x, radius) with list[0..count), found by a group
@@ -144,6 +162,46 @@ TEST(MeshContactsGroup, LanesFindTheContactsOfOneThread) {
   EXPECT_GT(capped, 0);
   std::printf("%d spheres, %d contacts, %d with more than %d triangles in reach\n", queries, contacts, capped,
               kMeshInReachCap);
+}
+
+// nearest_over_group: every lane ends with the nearest report of the whole
+// list, as one thread finds it, whichever lanes held it (spheres under the
+// hub's fan, its 64 triangles around the axis within reach of some).
+TEST(MeshContactsGroup, LanesAgreeOnTheNearestReport) {
+  const MeshSet set = test::single_mesh_set(make_impeller());
+  const MeshView m = set.view();
+  const double radius = 1.05e-3;
+  for (double r : {0.0, 9e-5, 4.6e-4, 1.5e-3})
+    for (int a = 0; a < 5; ++a) {
+      const Vec3d x(r * std::cos(1.3 * a), r * std::sin(1.3 * a), -1e-3);
+      std::vector<std::int32_t> list;
+      NearestReport one;
+      for (std::int32_t t = 0; t < set.n_triangles(); ++t) {
+        const ClosestPoint c = triangle_closest_point(m, t, x);
+        if (c.distance < 3 * radius) list.push_back(t);
+        if (c.distance < radius) one.consider(c.distance, c.feature, t);
+      }
+      ASSERT_GE(one.t, 0);
+      for (int lanes : {2, 4, 8, 16, 32}) {
+        Votes votes(lanes);
+        std::vector<std::int32_t> found(std::size_t(lanes), -2);
+        std::vector<std::thread> threads;
+        for (int rank = 0; rank < lanes; ++rank)
+          threads.emplace_back([&, rank] {
+            const ThreadLane lane{lanes, rank, &votes};
+            NearestReport own;
+            for (std::size_t k = std::size_t(rank); k < list.size(); k += std::size_t(lanes)) {
+              const ClosestPoint c = triangle_closest_point(m, list[k], x);
+              if (c.distance < radius) own.consider(c.distance, c.feature, list[k]);
+            }
+            nearest_over_group(lane, own);
+            found[std::size_t(rank)] = own.t;
+          });
+        for (std::thread& t : threads) t.join();
+        for (int rank = 0; rank < lanes; ++rank)
+          EXPECT_EQ(found[std::size_t(rank)], one.t) << lanes << " lanes, lane " << rank << ", r " << r;
+      }
+    }
 }
 
 }  // namespace
