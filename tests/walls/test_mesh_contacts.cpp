@@ -195,17 +195,13 @@ TEST(MeshContacts, UnderAFanTheNearestReportDropsTheOthers) {
   int dropped = 0;
   for (const Vec3d& x : spheres_under_the_hub()) {
     const std::vector<std::int32_t> list = cell_list(m, set.n_triangles(), x, 3 * radius);
-    NearestReport nearest;
-    for (std::int32_t t : list) {
-      const ClosestPoint r = triangle_closest_point(m, t, x);
-      if (r.distance < radius) nearest.consider(r.distance, r.feature, t);
-    }
-    ASSERT_GE(nearest.t, 0);
+    const std::int32_t nearest = nearest_report(m, list.data(), std::int32_t(list.size()), x, radius);
+    ASSERT_GE(nearest, 0);
     const double tol = mesh_coincidence_tolerance(x, radius);
     for (std::int32_t t : list) {
       const ClosestPoint r = triangle_closest_point(m, t, x);
-      if (t == nearest.t || !(r.distance < radius)) continue;
-      EXPECT_TRUE(detail::objects(m, x, radius, tol * tol, detail::make_report(m, t, r), nearest.t))
+      if (t == nearest || !(r.distance < radius)) continue;
+      EXPECT_TRUE(detail::objects(m, x, radius, tol * tol, detail::make_report(m, t, r), nearest))
           << "triangle " << t << " under the hub at " << x.x << " " << x.y;
       ++dropped;
     }

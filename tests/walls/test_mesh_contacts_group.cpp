@@ -164,9 +164,10 @@ TEST(MeshContactsGroup, LanesFindTheContactsOfOneThread) {
               kMeshInReachCap);
 }
 
-// nearest_over_group: every lane ends with the nearest report of the whole
-// list, as one thread finds it, whichever lanes held it (spheres under the
-// hub's fan, its 64 triangles around the axis within reach of some).
+// nearest_report_in_group: every lane ends with the nearest report of the
+// whole list, as one thread finds it (nearest_report), whichever lane held it
+// (spheres under the hub's fan, its 64 triangles around the axis within reach
+// of some).
 TEST(MeshContactsGroup, LanesAgreeOnTheNearestReport) {
   const MeshSet set = test::single_mesh_set(make_impeller());
   const MeshView m = set.view();
@@ -175,13 +176,11 @@ TEST(MeshContactsGroup, LanesAgreeOnTheNearestReport) {
     for (int a = 0; a < 5; ++a) {
       const Vec3d x(r * std::cos(1.3 * a), r * std::sin(1.3 * a), -1e-3);
       std::vector<std::int32_t> list;
-      NearestReport one;
-      for (std::int32_t t = 0; t < set.n_triangles(); ++t) {
-        const ClosestPoint c = triangle_closest_point(m, t, x);
-        if (c.distance < 3 * radius) list.push_back(t);
-        if (c.distance < radius) one.consider(c.distance, c.feature, t);
-      }
-      ASSERT_GE(one.t, 0);
+      for (std::int32_t t = 0; t < set.n_triangles(); ++t)
+        if (triangle_closest_point(m, t, x).distance < 3 * radius) list.push_back(t);
+      const std::int32_t n = std::int32_t(list.size());
+      const std::int32_t one = nearest_report(m, list.data(), n, x, radius);
+      ASSERT_GE(one, 0);
       for (int lanes : {2, 4, 8, 16, 32}) {
         Votes votes(lanes);
         std::vector<std::int32_t> found(std::size_t(lanes), -2);
@@ -189,17 +188,11 @@ TEST(MeshContactsGroup, LanesAgreeOnTheNearestReport) {
         for (int rank = 0; rank < lanes; ++rank)
           threads.emplace_back([&, rank] {
             const ThreadLane lane{lanes, rank, &votes};
-            NearestReport own;
-            for (std::size_t k = std::size_t(rank); k < list.size(); k += std::size_t(lanes)) {
-              const ClosestPoint c = triangle_closest_point(m, list[k], x);
-              if (c.distance < radius) own.consider(c.distance, c.feature, list[k]);
-            }
-            nearest_over_group(lane, own);
-            found[std::size_t(rank)] = own.t;
+            found[std::size_t(rank)] = nearest_report_in_group(m, list.data(), n, x, radius, lane);
           });
         for (std::thread& t : threads) t.join();
         for (int rank = 0; rank < lanes; ++rank)
-          EXPECT_EQ(found[std::size_t(rank)], one.t) << lanes << " lanes, lane " << rank << ", r " << r;
+          EXPECT_EQ(found[std::size_t(rank)], one) << lanes << " lanes, lane " << rank << ", r " << r;
       }
     }
 }
