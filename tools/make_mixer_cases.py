@@ -7,11 +7,26 @@ impeller turns from that instant for the given number of revolutions, with
 the mixing analysis after every revolution.
 
     tools/make_mixer_cases.py [--out-dir cases/mixer] [--cases abcd]
-        [--revolutions 32] [--froude] [--stiffness-scale 1] [--suffix ""]
-        [--seed N]
+        [--revolutions 32] [--froude | --froude-scaled] [--stiffness-scale 1]
+        [--suffix ""] [--seed N]
 
 --froude uses the paper's Froude-scaled impeller speeds (Table 2, Eq. 12)
-instead of the reference 30 rpm. --stiffness-scale multiplies Table 4's
+instead of the reference 30 rpm, in the real geometry: a Froude number
+(30/rpm)^2 times smaller than the real mixer's. --froude-scaled writes the
+paper's scaled model instead (its Section 3: the geometry enlarged so that
+one sphere size serves all cases, the speed corrected by Eq. 12): every
+length times s = (30/rpm)^2 (the vessel, the impeller through the mesh's
+scale, the spheres, the fill, the samples' rings and height; the samples'
+mass times s^3, so they hold as many spheres), the settling time times
+sqrt(s), at the Table 2 speed, so the Froude number is the real mixer's.
+The springs stay: the weight on a contact grows as s^3, so the overlap
+relative to a diameter grows as s^2 (which is what makes the model cheap:
+contact times grow as s^1.5). With Table 4's stiffness, under the bed's
+weight at its bottom: case a (s = 28.0, spheres of 84 mm, a vessel of 2.8 m) about
+0.8 % of a diameter, case b (s = 64) about 10 %. --stiffness-scale below 1
+makes no sense there. (The paper gives its simulated spheres a radius of
+0.04 m in every case; with Table 2's speeds Eq. 12 gives that for case a
+only: 42 mm, against 67 mm for case b.) --stiffness-scale multiplies Table 4's
 stiffnesses (a softer, cheaper variant: the time step grows as its inverse
 square root; see docs/MIXER.md for what it changes). --seed sets the random
 fill's seed (default 1): another seed gives another fill of the same bed, for
@@ -49,18 +64,28 @@ def solid_volume(count, diameter):
     return count * math.pi / 6 * diameter**3
 
 
-def scene(case, revolutions, froude, stiffness_scale, settle, suffix, layers=1, seed=1):
+def units(s):
+    return "real units" if s == 1 else f"the paper's scaled model: lengths x {s:.4g}, the Froude number kept"
+
+
+def scene(case, revolutions, froude, stiffness_scale, settle, suffix, layers=1, seed=1, froude_scaled=False):
     count, diameter, froude_rpm = CASES[case]
-    rpm = froude_rpm if froude else 30.0
+    rpm = froude_rpm if froude or froude_scaled else 30.0
     period = 60.0 / rpm
+    # The paper's scaled model (Eq. 12: the Froude number omega^2 R / g kept):
+    # every length times s, times s^3 the samples' mass, times sqrt(s) the
+    # settling (a fall's time); 1 in real units.
+    s = (30.0 / froude_rpm) ** 2 if froude_scaled else 1.0
+    settle *= math.sqrt(s)
+    diameter *= s
     radius = diameter / 2
     volume = solid_volume(count, diameter)
     # Created in a cylinder above the shaft top, loose, so nothing starts inside the impeller.
-    fill_bottom = SHAFT_TOP + radius + 0.001
-    fill_height = volume / CREATION_PACKING / (math.pi * FILL_RADIUS**2)
-    top = fill_bottom + fill_height + 0.002
-    bed_height = volume / BED_PACKING / (math.pi * VESSEL_RADIUS**2)
-    sample_height = round(min(bed_height, 0.08), 4)
+    fill_bottom = s * SHAFT_TOP + radius + 0.001 * s
+    fill_height = volume / CREATION_PACKING / (math.pi * (s * FILL_RADIUS)**2)
+    top = fill_bottom + fill_height + 0.002 * s
+    bed_height = volume / BED_PACKING / (math.pi * (s * VESSEL_RADIUS)**2)
+    sample_height = round(min(bed_height, 0.08 * s), 4)
     kn, kt = K_NORMAL * stiffness_scale, K_TANGENTIAL * stiffness_scale
     duration = settle + revolutions * period
     # Snapshots at multiples of the settling time, so one lands on the marking;
@@ -68,8 +93,8 @@ def scene(case, revolutions, froude, stiffness_scale, settle, suffix, layers=1, 
     snapshot_every = settle * (1 if count < 500000 else 2)
     name = f"case_{case}"
     return f"""# Seed mixer, case {case} (Radeke et al. 2010, Tables 1-4): {count:,} glass spheres of
-# {diameter * 1e3:.2f} mm in the 100 mm vessel with the four-bladed impeller at {rpm:g} rpm
-# ({"Froude-scaled, Table 2" if froude else "the reference speed"}), real units.
+# {diameter * 1e3:.2f} mm in the {100 * s:g} mm vessel with the four-bladed impeller at {rpm:g} rpm
+# ({"Froude-scaled, Table 2" if froude or froude_scaled else "the reference speed"}), {units(s)}.
 # Written by tools/make_mixer_cases.py; procedure and choices: docs/MIXER.md.
 # Stiffness {"of Table 4" if stiffness_scale == 1 else f"Table 4 x {stiffness_scale:g} (a cheaper variant)"}.
 # Procedure: fall from a loose fill above the shaft and settle for {settle:g} s with
@@ -77,7 +102,7 @@ def scene(case, revolutions, froude, stiffness_scale, settle, suffix, layers=1, 
 # start the impeller; {revolutions} revolutions; mixing statistics every revolution.
 # impeller.stl: build/tools/make_impeller cases/mixer/impeller.stl
 
-domain: {{min: [-0.052, -0.052, {FLOOR - 0.001}], max: [0.052, 0.052, {top + 0.002:.4f}]}}
+domain: {{min: [{-0.052 * s:g}, {-0.052 * s:g}, {s * (FLOOR - 0.001):g}], max: [{0.052 * s:g}, {0.052 * s:g}, {top + 0.002 * s:.4f}]}}
 gravity: [0, 0, -9.81]
 contact_model: linear
 precision: fp32
@@ -92,10 +117,10 @@ pairs:
   - {{materials: [glass, steel], stiffness_normal: {kn:.6g}, stiffness_tangential: {kt:.6g}, restitution: 0.78, friction: 0.2}}
 
 walls:
-  - cylinder: {{base: [0, 0, {FLOOR}], axis: [0, 0, 1], radius: {VESSEL_RADIUS}, length: {top - FLOOR:.4f}, caps: bottom}}
+  - cylinder: {{base: [0, 0, {s * FLOOR:g}], axis: [0, 0, 1], radius: {s * VESSEL_RADIUS:g}, length: {top - s * FLOOR:.4f}, caps: bottom}}
     material: steel
     name: vessel
-  - mesh: {{stl: impeller.stl}}
+  - mesh: {{stl: impeller.stl{"" if s == 1 else f", scale: {s:.6g}"}}}
     material: steel
     name: impeller
     motion: {{rotation: {{axis_point: [0, 0, 0], axis: [0, 0, 1], rpm: {rpm:g}}}, start: {settle:g}}}
@@ -103,7 +128,7 @@ walls:
 particles:
   - random_fill:
       material: glass
-      region: {{cylinder: {{base: [0, 0, {fill_bottom:.4f}], axis: [0, 0, 1], radius: {FILL_RADIUS}, length: {fill_height:.4f}}}}}
+      region: {{cylinder: {{base: [0, 0, {fill_bottom:.4f}], axis: [0, 0, 1], radius: {s * FILL_RADIUS:g}, length: {fill_height:.4f}}}}}
       count: {count}
       radius: {radius:g}
       seed: {seed}
@@ -120,10 +145,10 @@ output:
 analysis:
   mixing:
     center: [0, 0]
-    bottom: {FLOOR}
+    bottom: {s * FLOOR:g}
     height: {sample_height}            # about the settled bed's height
-    rings: {{inner_radius: 0.012, outer_radius: 0.048, count: 3}}
-    sample_mass: {SAMPLE_MASS}
+    rings: {{inner_radius: {0.012 * s:g}, outer_radius: {0.048 * s:g}, count: 3}}
+    sample_mass: {SAMPLE_MASS * s**3:g}
     bulk_density: {DENSITY * BED_PACKING:g}
     start: {settle:g}
     revolution_period: {period:.6g}
@@ -135,7 +160,9 @@ def main():
     p.add_argument("--out-dir", default=os.path.join(os.path.dirname(__file__), "..", "cases", "mixer"))
     p.add_argument("--cases", default="abcd")
     p.add_argument("--revolutions", type=int, default=32)
-    p.add_argument("--froude", action="store_true")
+    speed = p.add_mutually_exclusive_group()
+    speed.add_argument("--froude", action="store_true", help="the Table 2 speed in the real geometry")
+    speed.add_argument("--froude-scaled", action="store_true", help="the paper's scaled model (Eq. 12)")
     p.add_argument("--stiffness-scale", type=float, default=1.0)
     p.add_argument("--settle", type=float, default=1.0, help="seconds of settling before marking [1.0]")
     p.add_argument("--suffix", default="", help="appended to the file names, e.g. _froude")
@@ -149,7 +176,8 @@ def main():
     for c in a.cases:
         path = os.path.join(a.out_dir, f"case_{c}{a.suffix}.yaml")
         with open(path, "w") as f:
-            f.write(scene(c, a.revolutions, a.froude, a.stiffness_scale, a.settle, a.suffix, a.layers, a.seed))
+            f.write(scene(c, a.revolutions, a.froude, a.stiffness_scale, a.settle, a.suffix, a.layers, a.seed,
+                          a.froude_scaled))
         print(path)
 
 
