@@ -279,8 +279,8 @@ GS_HD GS_INLINE bool keep_mesh_report(const MeshView& m, const std::int32_t* lis
 }  // namespace detail
 
 // The first of the reports within reach in the rule's total order (nearest,
-// then face before edge before vertex, then lowest index), which the rule
-// asks first: it objects to most of the others (under a flat fan, the face
+// then face before edge before vertex, then lowest index), found while the
+// triangles in reach are listed, which the rule asks first: it objects to most of the others (under a flat fan, the face
 // report to every edge and vertex report around the centre), which are then
 // dropped after one closest point instead of a scan of the list. A sphere
 // under the centre of the mixer impeller's hub, 64 triangles in reach,
@@ -298,24 +298,6 @@ struct NearestReport {
     t = u;
   }
 };
-
-// The triangle of list[0..count) with the nearest report within reach of the
-// sphere (x, radius), or -1. A pass of its own, so that its state is not held
-// through the listing of the triangles in reach (registers of the force kernel).
-GS_HD GS_INLINE std::int32_t nearest_report(const MeshView& m, const std::int32_t* list, std::int32_t count,
-                                            const Vec3d& x, double radius) {
-  NearestReport nearest;
-  for (std::int32_t k = 0; k < count; ++k) {
-    const ClosestPoint r = triangle_closest_point(m, list[k], x);
-    if (r.distance < radius) nearest.consider(r.distance, r.feature, list[k]);
-  }
-  return nearest.t;
-}
-
-// With this many triangles in reach or fewer the rule asks them in list
-// order: a report then costs one closest point at most, which the pass that
-// finds the nearest would not save.
-constexpr int kMeshAskNearestFrom = 2;
 
 // How many triangles within reach for_each_mesh_contact_in lists apart; with
 // more in reach it scans the whole cell list.
@@ -366,8 +348,11 @@ GS_HD void for_each_mesh_contact_in(const MeshView& m, const std::int32_t* list,
   // warp of others (the mixer's particles wedged under the hub).
   std::int32_t in_reach[kMeshInReachCap];
   std::int32_t n_in_reach = 0;
-  for (std::int32_t k = 0; k < count && n_in_reach <= kMeshInReachCap; ++k) {
-    if (!(triangle_closest_point(m, list[k], x).distance < radius)) continue;
+  NearestReport nearest;
+  for (std::int32_t k = 0; k < count; ++k) {
+    const ClosestPoint r = triangle_closest_point(m, list[k], x);
+    if (!(r.distance < radius)) continue;
+    nearest.consider(r.distance, r.feature, list[k]);
     if (n_in_reach < kMeshInReachCap) in_reach[n_in_reach] = list[k];
     ++n_in_reach;
   }
@@ -375,13 +360,12 @@ GS_HD void for_each_mesh_contact_in(const MeshView& m, const std::int32_t* list,
     list = in_reach;
     count = n_in_reach;
   }
-  const std::int32_t first = count > kMeshAskNearestFrom ? nearest_report(m, list, count, x, radius) : -1;
   const double tol = mesh_coincidence_tolerance(x, radius);
   const double tol2 = tol * tol;
   for (std::int32_t k = 0; k < count; ++k) {
     const std::int32_t t = list[k];
     const ClosestPoint r = triangle_closest_point(m, t, x);
-    if (mesh_report_kept(m, list, count, x, radius, tol2, t, r, first)) visit(mesh_contact(m, t, r, x, radius));
+    if (mesh_report_kept(m, list, count, x, radius, tol2, t, r, nearest.t)) visit(mesh_contact(m, t, r, x, radius));
   }
 }
 

@@ -23,20 +23,6 @@ GS_HD void nearest_over_group(const Group& g, NearestReport& nearest) {
   }
 }
 
-// nearest_report (walls/sphere_triangle.hpp) by the group's lanes, the
-// answer on every lane.
-template <class Group>
-GS_HD std::int32_t nearest_report_in_group(const MeshView& m, const std::int32_t* list, std::int32_t count,
-                                           const Vec3d& x, double radius, const Group& g) {
-  NearestReport nearest;
-  for (std::int32_t k = g.rank; k < count; k += g.size) {
-    const ClosestPoint r = triangle_closest_point(m, list[k], x);
-    if (r.distance < radius) nearest.consider(r.distance, r.feature, list[k]);
-  }
-  nearest_over_group(g, nearest);
-  return nearest.t;
-}
-
 template <class Group, class Visitor>
 GS_HD void for_each_mesh_contact_in_group(const MeshView& m, const std::int32_t* list, std::int32_t count,
                                           const Vec3d& x, double radius, const Group& g, Visitor& visit) {
@@ -44,19 +30,25 @@ GS_HD void for_each_mesh_contact_in_group(const MeshView& m, const std::int32_t*
   // lane keeps the same copy.
   std::int32_t in_reach[kMeshInReachCap];
   std::int32_t n_in_reach = 0;
-  for (std::int32_t first = 0; first < count && n_in_reach <= kMeshInReachCap; first += g.size) {
+  NearestReport nearest;  // of this lane's triangles, then of the group's
+  for (std::int32_t first = 0; first < count; first += g.size) {
     const std::int32_t k = first + g.rank;
-    const bool near = k < count && triangle_closest_point(m, list[k], x).distance < radius;
-    for (unsigned hits = g.ballot(near); hits != 0 && n_in_reach <= kMeshInReachCap; hits &= hits - 1) {
+    bool near = false;
+    if (k < count) {
+      const ClosestPoint r = triangle_closest_point(m, list[k], x);
+      near = r.distance < radius;
+      if (near) nearest.consider(r.distance, r.feature, list[k]);
+    }
+    for (unsigned hits = g.ballot(near); hits != 0; hits &= hits - 1) {
       if (n_in_reach < kMeshInReachCap) in_reach[n_in_reach] = list[first + lowest_bit(hits)];
       ++n_in_reach;
     }
   }
+  nearest_over_group(g, nearest);
   if (n_in_reach <= kMeshInReachCap) {
     list = in_reach;
     count = n_in_reach;
   }
-  const std::int32_t nearest = count > kMeshAskNearestFrom ? nearest_report_in_group(m, list, count, x, radius, g) : -1;
   const double tol = mesh_coincidence_tolerance(x, radius);
   const double tol2 = tol * tol;
   for (std::int32_t first = 0; first < count; first += g.size) {
@@ -64,7 +56,7 @@ GS_HD void for_each_mesh_contact_in_group(const MeshView& m, const std::int32_t*
     bool kept = false;
     if (k < count)
       kept = mesh_report_kept(m, list, count, x, radius, tol2, list[k], triangle_closest_point(m, list[k], x),
-                              nearest);
+                              nearest.t);
     unsigned keep = g.ballot(kept);
     if (!g.leader()) continue;
     for (; keep != 0; keep &= keep - 1) {

@@ -195,7 +195,12 @@ TEST(MeshContacts, UnderAFanTheNearestReportDropsTheOthers) {
   int dropped = 0;
   for (const Vec3d& x : spheres_under_the_hub()) {
     const std::vector<std::int32_t> list = cell_list(m, set.n_triangles(), x, 3 * radius);
-    const std::int32_t nearest = nearest_report(m, list.data(), std::int32_t(list.size()), x, radius);
+    NearestReport first;
+    for (std::int32_t t : list) {
+      const ClosestPoint r = triangle_closest_point(m, t, x);
+      if (r.distance < radius) first.consider(r.distance, r.feature, t);
+    }
+    const std::int32_t nearest = first.t;
     ASSERT_GE(nearest, 0);
     const double tol = mesh_coincidence_tolerance(x, radius);
     for (std::int32_t t : list) {

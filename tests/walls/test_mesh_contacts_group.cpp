@@ -164,10 +164,9 @@ TEST(MeshContactsGroup, LanesFindTheContactsOfOneThread) {
               kMeshInReachCap);
 }
 
-// nearest_report_in_group: every lane ends with the nearest report of the
-// whole list, as one thread finds it (nearest_report), whichever lane held it
-// (spheres under the hub's fan, its 64 triangles around the axis within reach
-// of some).
+// nearest_over_group: every lane ends with the nearest report of the whole
+// list, as one thread finds it, whichever lane held it (spheres under the
+// hub's fan, its 64 triangles around the axis within reach of some).
 TEST(MeshContactsGroup, LanesAgreeOnTheNearestReport) {
   const MeshSet set = test::single_mesh_set(make_impeller());
   const MeshView m = set.view();
@@ -176,10 +175,13 @@ TEST(MeshContactsGroup, LanesAgreeOnTheNearestReport) {
     for (int a = 0; a < 5; ++a) {
       const Vec3d x(r * std::cos(1.3 * a), r * std::sin(1.3 * a), -1e-3);
       std::vector<std::int32_t> list;
-      for (std::int32_t t = 0; t < set.n_triangles(); ++t)
-        if (triangle_closest_point(m, t, x).distance < 3 * radius) list.push_back(t);
-      const std::int32_t n = std::int32_t(list.size());
-      const std::int32_t one = nearest_report(m, list.data(), n, x, radius);
+      NearestReport nearest;
+      for (std::int32_t t = 0; t < set.n_triangles(); ++t) {
+        const ClosestPoint c = triangle_closest_point(m, t, x);
+        if (c.distance < 3 * radius) list.push_back(t);
+        if (c.distance < radius) nearest.consider(c.distance, c.feature, t);
+      }
+      const std::int32_t one = nearest.t;
       ASSERT_GE(one, 0);
       for (int lanes : {2, 4, 8, 16, 32}) {
         Votes votes(lanes);
@@ -188,7 +190,13 @@ TEST(MeshContactsGroup, LanesAgreeOnTheNearestReport) {
         for (int rank = 0; rank < lanes; ++rank)
           threads.emplace_back([&, rank] {
             const ThreadLane lane{lanes, rank, &votes};
-            found[std::size_t(rank)] = nearest_report_in_group(m, list.data(), n, x, radius, lane);
+            NearestReport own;  // this lane's share of the list, as the group scan deals it
+            for (std::size_t k = std::size_t(rank); k < list.size(); k += std::size_t(lanes)) {
+              const ClosestPoint c = triangle_closest_point(m, list[k], x);
+              if (c.distance < radius) own.consider(c.distance, c.feature, list[k]);
+            }
+            nearest_over_group(lane, own);
+            found[std::size_t(rank)] = own.t;
           });
         for (std::thread& t : threads) t.join();
         for (int rank = 0; rank < lanes; ++rank)
