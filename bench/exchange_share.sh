@@ -5,8 +5,12 @@
 # the slab axis, run by BUILD and, when given, by BASE_BUILD (a build of the
 # commit before, e.g. `git archive <commit> | tar -x -C carry/base` built
 # beside it). Prints per build the phases' seconds per step from the run log
-# ("time per phase"), the exchange's share of the step, and the halo's
-# rebuilds; the logs stay in OUT.
+# ("time per phase", whose sum is the run's time per step: the phases are
+# measured on every 128th step and scaled to the run's time), the exchange's
+# share of the step, and the halo's rebuilds; the logs stay in OUT. A timed
+# step waits for the device between its phases, so the exchange's figure is
+# what the exchange costs where nothing hides it; what the overlap with the
+# forces gains shows in the step's time.
 #   [N=16000000] [STEPS=300] [BACKEND=cuda] [RANKS=2] [EXCHANGE=host] \
 #     bench/exchange_share.sh BUILD OUT [BASE_BUILD]
 # BACKEND=cuda runs every rank on GPU 0 (ranks sharing one GPU move their

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "comm/device_link.hpp"
+#include "comm/host_message_buffer.hpp"
 #include "comm/transport.hpp"
 #include "decomposition/decomposition.hpp"
 #include "engine/particle_router.hpp"
@@ -33,7 +34,8 @@ class DomainExchange final : public RankExchange {
   void refresh_ghosts(ParticleStore& s, ParticleMovement& k) override;
   double set_skin(double skin) override;
   bool halo_stale(const ParticleStore& s, ParticleMovement& k, bool due) override;
-  void forward_ghosts(ParticleStore& s, ParticleMovement& k) override;
+  void start_forward(ParticleStore& s, ParticleMovement& k) override;
+  void finish_forward(ParticleStore& s, ParticleMovement& k) override;
   bool rebalance(ParticleStore& s, ParticleMovement& k) override;
   std::string first_fault(const std::string& local) override;
   long long total(long long local) override;
@@ -89,6 +91,10 @@ class DomainExchange final : public RankExchange {
   std::uint64_t plan_revision_ = 0;
   bool plan_valid_ = false;
   std::vector<DeviceArray<unsigned char>> outbox_, inbox_;  // one message per peer
+  // The forward's messages on the host (not over the device link), per peer,
+  // kept from step to step; in flight while forward_started_.
+  std::vector<HostMessageBuffer> host_out_, host_in_;
+  bool forward_started_ = false;
   std::unique_ptr<DeviceLink> link_;
   std::size_t sent_ = 0;         // particles trade() sent
 };

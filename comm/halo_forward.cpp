@@ -37,58 +37,74 @@ bool DomainExchange::halo_stale(const ParticleStore& s, ParticleMovement& k, boo
   return any;
 }
 
-// Packed on the backend straight from the send lists; through host buffers
-// (CPU ranks, GPU ranks sharing a GPU) or over the device link. Both sides
-// know every message's size from the rebuild, so no header travels.
-void DomainExchange::forward_ghosts(ParticleStore& s, ParticleMovement& k) {
+// Packed on the backend straight from the send lists into the send
+// buffers; through host buffers kept from step to step (CPU ranks, GPU ranks
+// sharing a GPU) or over the device link. Both sides know every message's
+// size from the rebuild, so no header travels. Through the host the
+// messages travel between start_forward and finish_forward, while the caller
+// computes the forces that need no ghost; over the device link they have
+// arrived when start_forward returns.
+void DomainExchange::start_forward(ParticleStore& s, ParticleMovement& k) {
   if (!plan_valid_ || s.revision != plan_revision_)
     throw std::logic_error("ghosts forwarded over a halo that no longer describes the store");
+  if (forward_started_) throw std::logic_error("a forward of the ghosts started before the last one finished");
   last_lap_ = std::chrono::steady_clock::now();
   const std::size_t n = peers_.size();
   const bool host_is_backend = router_backend_ == Backend::cpu;
-  std::vector<Bytes> send(n), recv;
+  std::vector<const unsigned char*> send(n);
+  std::vector<unsigned char*> recv(n);
   std::vector<std::size_t> send_bytes(n), recv_bytes(n);
+  host_out_.resize(n);
+  host_in_.resize(n);
   for (std::size_t p = 0; p < n; ++p) {
     send_bytes[p] = forward_bytes(send_list_[p].size());
     recv_bytes[p] = forward_bytes(std::size_t(ghost_count_[p]));
+    if (!link_) recv[p] = host_in_[p].hold(router_backend_, recv_bytes[p]);
     if (send_bytes[p] == 0) continue;
     if (host_is_backend && !link_) {
-      send[p].resize(send_bytes[p]);
-      k.pack_forward(s, send_list_[p], reinterpret_cast<unsigned char*>(send[p].data()));
+      unsigned char* out = host_out_[p].hold(router_backend_, send_bytes[p]);
+      k.pack_forward(s, send_list_[p], out);
+      send[p] = out;
       continue;
     }
     outbox_[p].resize(send_bytes[p]);
     k.pack_forward(s, send_list_[p], outbox_[p].data());
+    send[p] = outbox_[p].data();
     if (link_) continue;
-    send[p].resize(send_bytes[p]);
-    backend_copy_to_host(router_backend_, send[p].data(), outbox_[p].data(), send_bytes[p]);
+    unsigned char* out = host_out_[p].hold(router_backend_, send_bytes[p]);
+    backend_copy_to_host(router_backend_, out, outbox_[p].data(), send_bytes[p]);
+    send[p] = out;
   }
   lap(k, &ExchangeSplit::pack);
   if (link_) {
-    std::vector<const unsigned char*> from(n);
-    std::vector<unsigned char*> to(n);
     for (std::size_t p = 0; p < n; ++p) {
       inbox_[p].resize(recv_bytes[p]);
-      from[p] = outbox_[p].data();
-      to[p] = inbox_[p].data();
+      recv[p] = inbox_[p].data();
     }
-    link_->exchange(peers_, from, send_bytes, to, recv_bytes);
+    link_->exchange(peers_, send, send_bytes, recv, recv_bytes);
   } else {
-    transport_.exchange(peers_, send, recv);
+    transport_.start_exchange(peers_, send, send_bytes, recv, recv_bytes);
   }
+  forward_started_ = true;
   lap(k, &ExchangeSplit::transfer);
-  for (std::size_t p = 0; p < n; ++p) {
-    if (recv_bytes[p] == 0) continue;
+}
+
+void DomainExchange::finish_forward(ParticleStore& s, ParticleMovement& k) {
+  if (!forward_started_) throw std::logic_error("a forward of the ghosts finished that had not started");
+  forward_started_ = false;
+  last_lap_ = std::chrono::steady_clock::now();
+  if (!link_) transport_.finish_exchange();
+  lap(k, &ExchangeSplit::transfer);
+  const bool host_is_backend = router_backend_ == Backend::cpu;
+  for (std::size_t p = 0; p < peers_.size(); ++p) {
+    const std::size_t bytes = forward_bytes(std::size_t(ghost_count_[p]));
+    if (bytes == 0) continue;
     const unsigned char* payload = inbox_[p].data();
     if (!link_) {
-      if (recv[p].size() != recv_bytes[p])
-        throw std::runtime_error("a ghost update from rank " + std::to_string(peers_[p]) + " has " +
-                                 std::to_string(recv[p].size()) + " bytes, " + std::to_string(recv_bytes[p]) +
-                                 " expected");
-      payload = reinterpret_cast<const unsigned char*>(recv[p].data());
+      payload = host_in_[p].data();
       if (!host_is_backend) {
-        inbox_[p].resize(recv_bytes[p]);
-        backend_copy_from_host(router_backend_, inbox_[p].data(), recv[p].data(), recv_bytes[p]);
+        inbox_[p].resize(bytes);
+        backend_copy_from_host(router_backend_, inbox_[p].data(), payload, bytes);
         payload = inbox_[p].data();
       }
     }

@@ -81,6 +81,45 @@ class MpiTransport final : public Transport {
     wait_all(requests);
   }
 
+  void start_exchange(const std::vector<int>& peers, const std::vector<const unsigned char*>& send,
+                      const std::vector<std::size_t>& send_bytes, const std::vector<unsigned char*>& recv,
+                      const std::vector<std::size_t>& recv_bytes) override {
+    if (!started_.empty()) throw std::logic_error("an exchange started before the last one finished");
+    for (std::size_t k = 0; k < peers.size(); ++k)
+      for (std::size_t off = 0; off < recv_bytes[k]; off += kChunk) {
+        const int count = int(std::min(kChunk, recv_bytes[k] - off));
+        started_.emplace_back();
+        expected_.push_back({peers[k], count});
+        GS_MPI_CHECK(
+            MPI_Irecv(recv[k] + off, count, MPI_BYTE, peers[k], kForwardTag, MPI_COMM_WORLD, &started_.back()));
+      }
+    for (std::size_t k = 0; k < peers.size(); ++k)
+      for (std::size_t off = 0; off < send_bytes[k]; off += kChunk) {
+        started_.emplace_back();
+        // MPI 3 takes a const buffer; the cast serves older headers.
+        GS_MPI_CHECK(MPI_Isend(const_cast<unsigned char*>(send[k]) + off, int(std::min(kChunk, send_bytes[k] - off)),
+                               MPI_BYTE, peers[k], kForwardTag, MPI_COMM_WORLD, &started_.back()));
+      }
+  }
+  // A message shorter than agreed would leave stale bytes unnoticed (a longer
+  // one fails the receive itself): each receive's count is checked.
+  void finish_exchange() override {
+    std::vector<MPI_Status> status(started_.size());
+    const int waited = MPI_Waitall(int(started_.size()), started_.data(), status.data());
+    started_.clear();
+    std::vector<Expected> expected;
+    expected.swap(expected_);
+    GS_MPI_CHECK(waited);
+    for (std::size_t r = 0; r < expected.size(); ++r) {
+      int count = 0;
+      GS_MPI_CHECK(MPI_Get_count(&status[r], MPI_BYTE, &count));
+      if (count != expected[r].bytes)
+        throw std::runtime_error("a message from rank " + std::to_string(expected[r].peer) + " has " +
+                                 std::to_string(count) + " bytes, " + std::to_string(expected[r].bytes) +
+                                 " expected");
+    }
+  }
+
   void sum(std::vector<std::int64_t>& values) override {
     GS_MPI_CHECK(MPI_Allreduce(MPI_IN_PLACE, values.data(), int(values.size()), MPI_INT64_T, MPI_SUM,
                                MPI_COMM_WORLD));
@@ -139,12 +178,19 @@ class MpiTransport final : public Transport {
   }
 
  private:
-  static constexpr int kSizeTag = 17, kDataTag = 18;
+  static constexpr int kSizeTag = 17, kDataTag = 18, kForwardTag = 19;
   static void wait_all(std::vector<MPI_Request>& requests) {
     GS_MPI_CHECK(MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE));
     requests.clear();
   }
   int rank_ = 0, size_ = 1, local_rank_ = 0;
+  // start_exchange's requests until finish_exchange, its receives first,
+  // with the sender and size each receive expects.
+  struct Expected {
+    int peer, bytes;
+  };
+  std::vector<MPI_Request> started_;
+  std::vector<Expected> expected_;
   // The outstanding start_min: its buffers must live until MPI_Wait.
   MPI_Request pending_ = MPI_REQUEST_NULL;
   int pending_value_ = 0, pending_result_ = 0;

@@ -16,6 +16,12 @@ class SingleTransport final : public Transport {
     if (!peers.empty()) throw std::logic_error("a single rank has no peers");
     recv.clear();
   }
+  void start_exchange(const std::vector<int>& peers, const std::vector<const unsigned char*>&,
+                      const std::vector<std::size_t>&, const std::vector<unsigned char*>&,
+                      const std::vector<std::size_t>&) override {
+    if (!peers.empty()) throw std::logic_error("a single rank has no peers");
+  }
+  void finish_exchange() override {}
   void sum(std::vector<std::int64_t>&) override {}
   void sum(std::vector<double>&) override {}
   int min(int value) override { return value; }

@@ -22,6 +22,19 @@ class Transport {
   // Sends send[k] to peers[k] and receives recv[k] from peers[k]. Every rank
   // lists the same pairs (a in b's peers iff b in a's). Collective over peers.
   virtual void exchange(const std::vector<int>& peers, const std::vector<Bytes>& send, std::vector<Bytes>& recv) = 0;
+  // The same for messages whose sizes both sides know already (the halo's
+  // forward between rebuilds), without the size handshake and into the
+  // caller's buffers, split so that the caller can work while they travel:
+  // start_exchange posts the sends of send_bytes[k] bytes at send[k] to
+  // peers[k] and the receives of recv_bytes[k] bytes into recv[k] (host
+  // memory left untouched until finish_exchange) and returns at once;
+  // finish_exchange returns when every message has arrived and every send
+  // buffer may be reused. At most one is outstanding; nothing else may use
+  // the transport between the two. Zero-byte entries are skipped.
+  virtual void start_exchange(const std::vector<int>& peers, const std::vector<const unsigned char*>& send,
+                              const std::vector<std::size_t>& send_bytes, const std::vector<unsigned char*>& recv,
+                              const std::vector<std::size_t>& recv_bytes) = 0;
+  virtual void finish_exchange() = 0;
   virtual void sum(std::vector<std::int64_t>& values) = 0;  // all-reduce, in place
   // All-reduce, in place. The grouping of the additions is MPI's: the result
   // is not bitwise independent of the rank count (use it for reported totals).

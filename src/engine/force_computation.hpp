@@ -24,6 +24,10 @@ class ForceComputation {
 
   // Forces, torques and history of every owned particle at the store's state.
   virtual void compute(ParticleStore& s, double dt, long long step) = 0;
+  // The same for the owned particles at store indices order[0, count)
+  // (backend memory) alone: each gets the force, torque and history compute()
+  // would give it, its sums in the same order.
+  virtual void compute_at(ParticleStore& s, double dt, long long step, const Index* order, Index count) = 0;
   // Load of each owned particle (store order) on each mesh, entry
   // i * n_meshes + m, from the last computation; empty without meshes.
   virtual std::vector<MeshLoad> particle_mesh_loads(const ParticleStore& s) const = 0;

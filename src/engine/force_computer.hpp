@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "backend/backend.hpp"
+#include "engine/at_indices.hpp"
 #include "engine/contact_measure_kernel.hpp"
 #include "engine/force_kernel.hpp"
 #include "engine/force_computation.hpp"
@@ -57,11 +58,12 @@ class ForceComputer final : public ForceComputation {
 
   void compute(ParticleStore& s, double dt, long long step) override {
     meshes_.reserve(std::size_t(s.size()));
+    with_candidates(s, [&](const auto& candidates) { launch(s.n_owned, kernel(s, candidates, dt, step)); });
+  }
+  void compute_at(ParticleStore& s, double dt, long long step, const Index* order, Index count) override {
+    meshes_.reserve(std::size_t(s.size()));
     with_candidates(s, [&](const auto& candidates) {
-      if constexpr (std::is_same_v<std::decay_t<decltype(candidates)>, ListCandidates>)
-        Exec::parallel_for_lanes(s.n_owned, lanes_setting_, kernel(s, candidates, dt, step));
-      else
-        Exec::parallel_for(s.n_owned, kernel(s, candidates, dt, step));
+      launch(count, AtIndices<decltype(kernel(s, candidates, dt, step))>{kernel(s, candidates, dt, step), order});
     });
   }
 
@@ -104,6 +106,13 @@ class ForceComputer final : public ForceComputation {
     } else {
       f(neighbours_.cell_candidates(s));
     }
+  }
+  // n kernel items: lane groups over a Verlet list (a group per particle in
+  // a scene too small to fill the GPU), else one thread each.
+  template <class F>
+  void launch(Index n, const F& f) {
+    if constexpr (Exec::verlet_list) Exec::parallel_for_lanes(n, lanes_setting_, f);
+    else Exec::parallel_for(n, f);
   }
   template <class Candidates>
   ForceKernel<Real, Model, Effects, Candidates> kernel(ParticleStore& s, const Candidates& candidates, double dt,

@@ -33,12 +33,14 @@ class NeighbourFinder final : public NeighbourSearch {
   // `scratch`: the step's staging buffer (engine/step_state.hpp), which
   // holds the cell list's sort buffers while it is built.
   explicit NeighbourFinder(DeviceArray<unsigned char>& scratch)
-      : cells_(Exec::backend), verlet_(Exec::backend), scratch_(scratch), verdicts_(Exec::backend) {}
+      : cells_(Exec::backend), verlet_(Exec::backend), split_order_(Exec::backend), scratch_(scratch),
+        verdicts_(Exec::backend) {}
 
   void build_cell_list(const ParticleStore& s, const CellGrid& grid) override {
     if (follower_) follower_->list_replacing(s);
     build_cells<Exec>(cells_, s.position.data(), s.id.data(), s.size(), grid, scratch_);
     verlet_.valid = false;
+    split_ = {};
   }
   const DeviceArray<Index>& cell_order() const override { return cells_.sorted; }
   bool uses_verlet_list() const override { return Exec::verlet_list; }
@@ -48,6 +50,7 @@ class NeighbourFinder final : public NeighbourSearch {
       if (follower_) follower_->list_building(s);
       build_verlet_list<Exec>(verlet_, cells_, s.position.data(), s.radius.data(), s.id.data(), s.n_owned, s.size(),
                               skin);
+      split_by_ghosts(s);
       built_at_ = s.revision;
       ++builds_;
       if (follower_) follower_->list_built(s);
@@ -101,7 +104,10 @@ class NeighbourFinder final : public NeighbourSearch {
       note_outrun(last.step, verdicts_.read(slot(last.step)));
     return std::exchange(outrun_, Fault{kFaultNone, 0, 0});
   }
-  std::size_t bytes() const override { return cells_.bytes() + verlet_.bytes(); }  // not scratch_: the mover's
+  GhostSplit ghost_split() const override { return split_; }
+  std::size_t bytes() const override {  // not scratch_: the mover's
+    return cells_.bytes() + verlet_.bytes() + split_order_.bytes();
+  }
 
   // What the force computation reads.
   CellCandidates cell_candidates(const ParticleStore& s) const {
@@ -116,8 +122,31 @@ class NeighbourFinder final : public NeighbourSearch {
   const PeriodicBox& box() const { return cells_.grid.box; }
 
  private:
+  // The ghost split of a list just built over a store with ghosts (none
+  // without: a single rank's store has none, and keeps no array for it). Two
+  // stable selections into one array of the owned particles' indices; their
+  // counts come back to the host, as the list's total did.
+  void split_by_ghosts(const ParticleStore& s) {
+    split_ = {};
+    if (s.size() == s.n_owned) {
+      split_order_ = DeviceArray<Index>(Exec::backend);
+      return;
+    }
+    split_order_.resize_discarding(std::size_t(s.n_owned));
+    const ListOffset* begin = verlet_.begin.data();
+    const Index* list = verlet_.list.data();
+    Index* order = split_order_.data();
+    DeviceArray<unsigned char>& scratch = verlet_.scan_scratch;
+    split_.interior = Exec::select(s.n_owned, ListNamesGhost{begin, list, s.n_owned, false}, order, scratch);
+    split_.boundary =
+        Exec::select(s.n_owned, ListNamesGhost{begin, list, s.n_owned, true}, order + split_.interior, scratch);
+    split_.order = order;
+  }
+
   CellList cells_;
   VerletList verlet_;  // empty where Exec::verlet_list is false
+  DeviceArray<Index> split_order_;  // GhostSplit::order's storage
+  GhostSplit split_;
   DeviceArray<unsigned char>& scratch_;
   std::uint64_t built_at_ = 0;  // the store's revision at the Verlet list's build
   std::uint64_t builds_ = 0;    // Verlet list builds so far

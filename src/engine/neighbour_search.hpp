@@ -8,6 +8,16 @@
 
 namespace gs {
 
+// The owned particles split by whether their Verlet list names a ghost, from
+// the list's last build: the forces of the interior ones (none) need nothing
+// the ghosts' forward brings, so a rank computes them while that forward is
+// in flight (Simulation::compute_forces), and the boundary ones after it.
+struct GhostSplit {
+  const Index* order = nullptr;  // backend memory: the interior's store indices, ascending, then the boundary's
+  Index interior = 0, boundary = 0;
+  bool valid() const { return order != nullptr; }  // false where the build saw no ghost
+};
+
 class NeighbourSearch {
  public:
   virtual ~NeighbourSearch() = default;
@@ -36,6 +46,7 @@ class NeighbourSearch {
   // kick-drift says so (neighbor/verlet_list.hpp, ListWatch): waiting for
   // that kernel only, while this step's runs.
   virtual bool stale(const ParticleStore& s) = 0;
+  virtual GhostSplit ghost_split() const = 0;
   virtual std::size_t bytes() const = 0;  // cell and Verlet lists
 };
 

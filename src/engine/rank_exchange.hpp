@@ -51,9 +51,14 @@ class RankExchange {
   // every contact partner of an owned particle is a ghost already (docs/MULTI_RANK.md).
   virtual bool halo_stale(const ParticleStore& s, ParticleMovement& k, bool due) = 0;
   // Between rebuilds: each ghost gets its owner's changing fields
-  // (engine/ghost_forward.hpp) over the send lists of the last refresh_ghosts.
+  // (engine/ghost_forward.hpp) over the send lists of the last refresh_ghosts,
+  // in two halves, so that what needs no ghost can be computed while the
+  // messages travel: start_forward packs and sends them, finish_forward
+  // receives and unpacks them (the ghosts hold the new fields only then).
+  // Collective, each half; nothing else may use the exchange between them.
   // Owned particles stay on this rank, even those that left its region.
-  virtual void forward_ghosts(ParticleStore& s, ParticleMovement& k) = 0;
+  virtual void start_forward(ParticleStore& s, ParticleMovement& k) = 0;
+  virtual void finish_forward(ParticleStore& s, ParticleMovement& k) = 0;
   // Collective. Re-partitions when the load imbalance (max / mean particles
   // per rank) exceeds the scene's threshold, and migrates; true if it did.
   virtual bool rebalance(ParticleStore& s, ParticleMovement& k) = 0;

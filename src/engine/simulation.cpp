@@ -252,16 +252,14 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
     // has already measured the moves. Memory is re-sorted only at a rebuild.
     t0 = Clock::now();
     if (kernels_->neighbours().stale(store_)) {
+      finish_forward();  // (a list built on the ghosts' last positions would be wrong)
       if (!exchange_) reorder_if_due();
       rebuild_neighbours();
       ++neighbour_builds_;
     }
     timings_.neighbours += phase_seconds(t0);
 
-    t0 = Clock::now();
-    kernels_->forces().compute(store_, dt, p.step);
-    if (p.step == contact_measure_step_) measure_contacts();
-    timings_.forces += phase_seconds(t0);
+    compute_forces(dt, p.step);
     t0 = Clock::now();
     kernels_->integration().kick(store_, p);
     timings_.integrate += phase_seconds(t0);
@@ -295,13 +293,15 @@ double Simulation::phase_seconds(std::chrono::steady_clock::time_point start) co
 // The halo as LAMMPS keeps it: rebuilt (migration or a load-balance check,
 // then the ghosts selected anew within the interaction range plus the skin)
 // only when some rank needs it, else the ghosts' positions and velocities
-// forwarded over the recorded send lists, particles staying where they are.
+// forwarded over the recorded send lists, particles staying where they are
+// (started here, finished by compute_forces).
 void Simulation::exchange_particles() {
   auto t0 = Clock::now();
   const long long next = step_ + 1;
   const bool balance = options_.rebalance_interval > 0 && next % options_.rebalance_interval == 0;
   if (!exchange_->halo_stale(store_, kernels_->movement(), balance || rebuild_due_)) {
-    exchange_->forward_ghosts(store_, kernels_->movement());
+    exchange_->start_forward(store_, kernels_->movement());
+    forward_in_flight_ = true;  // finished by compute_forces
     timings_.exchange += phase_seconds(t0);
     return;
   }
@@ -313,6 +313,41 @@ void Simulation::exchange_particles() {
   timings_.neighbours += phase_seconds(t0);
   t0 = Clock::now();
   exchange_->refresh_ghosts(store_, kernels_->movement());
+  timings_.exchange += phase_seconds(t0);
+}
+
+// The step's forces. While the ghosts' forward is in flight, the interior
+// particles' first (their lists name no ghost), then, once the ghosts hold
+// their new fields, the boundary's: each particle's force is the one a single
+// pass gives, so the split changes no bit. A rank works on the interior while
+// the messages travel, where it would have waited for them: the host, on a
+// GPU, in the transport's wait while the device runs the interior's kernel.
+// Timed steps (phase_seconds) wait for the device between the phases, and so
+// overlap little.
+void Simulation::compute_forces(double dt, long long step) {
+  auto t0 = Clock::now();
+  ForceComputation& forces = kernels_->forces();
+  const GhostSplit split = kernels_->neighbours().ghost_split();
+  if (forward_in_flight_ && split.valid()) {
+    forces.compute_at(store_, dt, step, split.order, split.interior);
+    timings_.forces += phase_seconds(t0);
+    finish_forward();
+    t0 = Clock::now();
+    forces.compute_at(store_, dt, step, split.order + split.interior, split.boundary);
+  } else {
+    finish_forward();  // a rank without ghosts still takes part
+    t0 = Clock::now();
+    forces.compute(store_, dt, step);
+  }
+  if (step == contact_measure_step_) measure_contacts();
+  timings_.forces += phase_seconds(t0);
+}
+
+void Simulation::finish_forward() {
+  if (!forward_in_flight_) return;
+  const auto t0 = Clock::now();
+  forward_in_flight_ = false;
+  exchange_->finish_forward(store_, kernels_->movement());
   timings_.exchange += phase_seconds(t0);
 }
 

@@ -118,6 +118,8 @@ class Simulation {
   void append_inserted(const std::vector<ParticleInit>& inserted);
   void measure_contacts();  // the contact pass, now
   void exchange_particles();
+  void compute_forces(double dt, long long step);
+  void finish_forward();  // the ghosts' forward, where one is in flight
   void reorder_if_due();
   double phase_seconds(std::chrono::steady_clock::time_point start) const;
   // Steps between timed ones: each waits for the device five times.
@@ -138,6 +140,7 @@ class Simulation {
   long long step_ = 0;
   long long last_reorder_ = 0;  // step of the last memory re-sort
   long long neighbour_builds_ = 0;
+  bool forward_in_flight_ = false;  // started by exchange_particles, finished by compute_forces
   bool rebuild_due_ = false;  // the store changed (insertion): the halo is rebuilt at the next step
   long long contact_measure_step_ = -1;  // the step of the next contact pass; -1: none
   long long measured_step_ = -1;         // the step of the last one

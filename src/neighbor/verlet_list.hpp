@@ -86,6 +86,20 @@ struct VerletList {
   std::size_t bytes() const { return begin.bytes() + list.bytes() + reference.bytes() + scan_scratch.bytes(); }
 };
 
+// Whether owned particle i's list names a ghost (a store index past the
+// owned particles), for want_ghost true; whether it names none, for false.
+struct ListNamesGhost {
+  const ListOffset* begin;
+  const Index* list;
+  Index n_owned;
+  bool want_ghost;
+  GS_HD bool operator()(Index i) const {
+    bool ghost = false;
+    for (ListOffset k = begin[i]; k < begin[i + 1] && !ghost; ++k) ghost = list[k] >= n_owned;
+    return ghost == want_ghost;
+  }
+};
+
 // Whether j (not i) lies within r_i + r_j + skin of x_i (its nearest image).
 struct WithinSkin {
   const Vec3d* position;
