@@ -57,6 +57,7 @@ BED_PACKING = 0.60        # solid fraction of the settled bed (for the sample he
 # 0.117 contact times, set by the tangential spring in a dense bed
 # (docs/STABILITY.md; `grainstorm check` prints it).
 TIME_STEP_FRACTION = 0.11
+DEEP_TIME_STEP_FRACTION = 0.05  # the scaled model's deep overlaps (scene() says why)
 SAMPLE_MASS = 0.46e-3     # Table 3: about 0.46 g in every case [kg]
 
 
@@ -87,6 +88,24 @@ def scene(case, revolutions, froude, stiffness_scale, settle, suffix, layers=1, 
     bed_height = volume / BED_PACKING / (math.pi * (s * VESSEL_RADIUS)**2)
     sample_height = round(min(bed_height, 0.08 * s), 4)
     kn, kt = K_NORMAL * stiffness_scale, K_TANGENTIAL * stiffness_scale
+    # A sphere falling from the fill's top onto the floor, or onto a resting
+    # sphere of its own mass, presses in by about v sqrt(m / 2 k) (the
+    # undamped spring). In real units below 1 % of a diameter; in the scaled
+    # model (v grows as sqrt(s), m as s^3) 22 % for case a and 58 % for case
+    # b. So deep, a sphere touches more spheres than the default 12 contact
+    # slots hold, and a step moves it too far for the Verlet list's margin: a
+    # list kept on the last step's verdict covers a move that grows by up to
+    # a tenth of the skin (0.01 diameters) in one step, and a contact of
+    # overlap delta changes a move by about a dt^2 = (pi f)^2 delta / 2 per
+    # step at f contact times per step, 0.06 delta at f = 0.11. Where the
+    # impacts pass 30 % of a diameter the scene gets 24 slots and f = 0.05
+    # (0.012 delta: overlaps up to 80 % of a diameter covered).
+    impact = math.sqrt(2 * 9.81 * (top - s * FLOOR)) * math.sqrt(DENSITY * math.pi / 6 * diameter**3 / 2 / kn) / diameter
+    deep = impact > 0.3
+    slots = (f"contact_slots: 24            # the fill's impacts press spheres about {100 * impact:.0f} % of a diameter deep\n"
+             if deep else "")
+    fraction = (f"{DEEP_TIME_STEP_FRACTION:g}}}          # {100 * impact:.0f} % overlaps: see tools/make_mixer_cases.py"
+                if deep else f"{TIME_STEP_FRACTION:g}}}")
     duration = settle + revolutions * period
     # Snapshots at multiples of the settling time, so one lands on the marking;
     # the big beds less often (case d: 250 MB each).
@@ -106,7 +125,7 @@ domain: {{min: [{-0.052 * s:g}, {-0.052 * s:g}, {s * (FLOOR - 0.001):g}], max: [
 gravity: [0, 0, -9.81]
 contact_model: linear
 precision: fp32
-effects: {{friction: true, rolling_resistance: false, cohesion: false}}
+{slots}effects: {{friction: true, rolling_resistance: false, cohesion: false}}
 
 materials:
   - {{name: glass, density: {DENSITY:g}}}
@@ -135,7 +154,7 @@ particles:
 
 marking: {{time: {settle:g}, plane: {{point: [0, 0, 0], normal: [1, 0, 0]}}, front: 1, back: 0}}
 
-time_step: {{fraction_of_contact_time: {TIME_STEP_FRACTION:g}}}
+time_step: {{fraction_of_contact_time: {fraction}
 duration: {duration:.6g}                 # settling + {revolutions} revolutions
 output:
   interval: {snapshot_every:g}                # snapshots at the marking and every {snapshot_every:g} s after it

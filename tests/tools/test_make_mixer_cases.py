@@ -1,7 +1,9 @@
 """tools/make_mixer_cases.py: the shipped scenes come out unchanged, and --froude-scaled
 writes the paper's scaled model (every length times s = (30/rpm)^2, the samples' mass
 times s^3, the settling times sqrt(s), the Table 2 speed: the real mixer's Froude
-number), which grainstorm accepts.
+number), which grainstorm accepts; where the fill's impacts press spheres
+deeper than 30 % of a diameter (case b's scaled model), with 24 contact slots
+and 0.05 contact times per step.
     python3 test_make_mixer_cases.py GRAINSTORM"""
 import math
 import os
@@ -69,15 +71,41 @@ class Scenes(unittest.TestCase):
                     number(scaled, r"axis: \[0, 0, 1\], radius: ([0-9.e-]+), length") / 9.81
                 self.assertAlmostEqual(froude, (math.pi) ** 2 * 0.05 / 9.81, delta=1e-6)
 
+    def test_deep_impacts_get_more_slots_and_a_shorter_step(self):
+        # A sphere falling from the top of the domain onto its floor meets a
+        # resting sphere at v = sqrt(2 g h) and presses in by v sqrt(m / 2 k):
+        # computed here from the scene's own numbers. Only case b's scaled
+        # model passes 30 % of a diameter; it alone gets 24 slots and 0.05.
+        with tempfile.TemporaryDirectory() as out:
+            write(out, "--cases", "ab")
+            write(out, "--cases", "ab", "--froude-scaled", "--suffix", "_scaled")
+            for name, deep in (("a", False), ("b", False), ("a_scaled", False), ("b_scaled", True)):
+                scene = read(os.path.join(out, f"case_{name}.yaml"))
+                r = number(scene, r"radius: ([0-9.e-]+)\n")
+                top = number(scene, r"max: \[[^]]*, ([0-9.e-]+)\]\}")
+                floor = number(scene, r"cylinder: \{base: \[0, 0, ([0-9.e-]+)\]")
+                k = number(scene, r"stiffness_normal: ([0-9.e-]+)")
+                m = 2500 * 4 / 3 * math.pi * r**3
+                impact = math.sqrt(2 * 9.81 * (top - floor)) * math.sqrt(m / 2 / k) / (2 * r)
+                self.assertEqual(impact > 0.3, deep, f"case {name}: {impact:.3f} of a diameter")
+                self.assertEqual("contact_slots: 24" in scene, deep, name)
+                fraction = number(scene, r"fraction_of_contact_time: ([0-9.]+)")
+                self.assertEqual(fraction, 0.05 if deep else 0.11, name)
+                if deep:  # the comment's figure, to the percent
+                    self.assertAlmostEqual(number(scene, r"about ([0-9]+) % of a diameter deep"), 100 * impact, delta=1.5)
+
     @unittest.skipUnless(GRAINSTORM, "no grainstorm binary given")
     def test_grainstorm_accepts_the_scaled_model(self):
         with tempfile.TemporaryDirectory() as out:
-            write(out, "--cases", "a", "--froude-scaled")
+            write(out, "--cases", "ab", "--froude-scaled")
             stl = os.path.join(ROOT, "cases", "mixer", "impeller.stl")
             os.symlink(os.path.abspath(stl), os.path.join(out, "impeller.stl"))
-            check = subprocess.run([GRAINSTORM, "check", "case_a.yaml"], cwd=out, capture_output=True, text=True)
-            self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
-            self.assertIn("particles:      7680", check.stdout)
+            for case, count, fraction in (("a", 7680, "0.11"), ("b", 76800, "0.05")):
+                check = subprocess.run([GRAINSTORM, "check", f"case_{case}.yaml"], cwd=out, capture_output=True,
+                                       text=True)
+                self.assertEqual(check.returncode, 0, check.stdout + check.stderr)
+                self.assertIn(f"particles:      {count}", check.stdout)
+                self.assertIn(f"({fraction} of the contact time)", check.stdout)
 
 
 if __name__ == "__main__":
