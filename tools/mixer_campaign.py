@@ -6,6 +6,7 @@
     tools/mixer_campaign.py restore OUT CAMPAIGN_DIR
     tools/mixer_campaign.py analyse CAMPAIGN_DIR [--out-dir docs/data/mixer]
                                    [--prefix campaign] [--plot-dir docs/img]
+    tools/mixer_campaign.py plot [DATA_DIR=docs/data/mixer] [--prefix campaign] [--plot-dir docs/img]
     tools/mixer_campaign.py snapshots RUN_DIR SCENE REVOLUTION...
 
 progress: per run (a scene NAME.yaml with its directory NAME/) the
@@ -26,6 +27,10 @@ NAME/timeseries.csv, the load on the first mesh) averaged over the revolution
 that ends there (mean and standard deviation over the seeds), and plots Lacey
 and 1 - RSD against revolutions (as the seed's Figs. 7-10) into PLOT_DIR when
 matplotlib is present.
+
+plot: the same plots from the tables analyse wrote (DATA_DIR/PREFIX_*.csv),
+every variant there, so that they can be drawn again once the runs'
+directories are gone (they do not outlive a session of the GPU jobs).
 
 snapshots: the snapshot files (particles_STEP.h5, with meshes_STEP.h5 where
 written) of a run directory nearest to each given revolution, within a
@@ -215,6 +220,26 @@ def analyse(campaign, out_dir, prefix, plot_dir):
         plot(tables, plot_dir, prefix)
 
 
+def read_tables(data_dir, prefix):
+    """The tables analyse wrote ({prefix}_VARIANT.csv in data_dir), as analyse
+    hands them to plot: per variant, per revolution (revolution, runs, (mean,
+    sd, min, max) of the Lacey index, the same of 1 - RSD)."""
+    tables = {}
+    for name in sorted(os.listdir(data_dir)):
+        m = re.fullmatch(re.escape(prefix) + r"_(.+)\.csv", name)
+        if not m:
+            continue
+        table = []
+        with open(os.path.join(data_dir, name), newline="") as f:
+            for r in csv.DictReader(f):
+                stats = lambda key: tuple(float(r[f"{key}_{s}"]) for s in ("mean", "sd", "min", "max"))
+                table.append((int(r["revolutions"]), int(r["runs"]), stats("lacey"), stats("one_minus_rsd")))
+        tables[m.group(1)] = table
+    if not tables:
+        sys.exit(f"mixer_campaign: no {prefix}_*.csv in {data_dir}")
+    return tables
+
+
 def plot(tables, plot_dir, prefix):
     try:
         import matplotlib
@@ -264,6 +289,10 @@ def main():
     an.add_argument("--out-dir", default="docs/data/mixer")
     an.add_argument("--prefix", default="campaign")
     an.add_argument("--plot-dir", default="docs/img", help="'' for no plots [docs/img]")
+    pl = sub.add_parser("plot")
+    pl.add_argument("data_dir", nargs="?", default="docs/data/mixer")
+    pl.add_argument("--prefix", default="campaign")
+    pl.add_argument("--plot-dir", default="docs/img")
     sn = sub.add_parser("snapshots")
     sn.add_argument("run_dir")
     sn.add_argument("scene")
@@ -274,6 +303,9 @@ def main():
         return
     if a.command == "snapshots":
         snapshots(a.run_dir, a.scene, a.revolutions)
+        return
+    if a.command == "plot":
+        plot(read_tables(a.data_dir, a.prefix), a.plot_dir, a.prefix)
         return
     if not os.path.isdir(a.campaign):
         sys.exit(f"mixer_campaign: {a.campaign} is not a directory")

@@ -83,6 +83,27 @@ with tempfile.TemporaryDirectory() as campaign:
         check(f"revolution {rev}: torque over that revolution",
               close(float(x["torque_mean"]), sum(per_seed) / 2) and
               close(float(x["torque_sd"]), abs(per_seed[0] - per_seed[1]) / math.sqrt(2)))
+    # The tables read back as analyse handed them to its plots (plot reads them
+    # once the runs are gone): the means, spreads and ranges computed here.
+    sys.path.insert(0, sys.argv[1])
+    import mixer_campaign
+    tables = mixer_campaign.read_tables(out, "campaign")
+    check("plot reads one variant", list(tables) == ["case_x"])
+    for rev, runs, lacey, orsd in tables["case_x"]:
+        values = [seeds[n][0][rev] for n in seeds]
+        mean = sum(values) / 2
+        check(f"revolution {rev} read back", runs == 2 and close(lacey[0], mean) and
+              close(lacey[1], abs(values[0] - values[1]) / math.sqrt(2)) and close(lacey[2], min(values)) and
+              close(lacey[3], max(values)) and close(orsd[0], mean / 2))
+    plots = os.path.join(campaign, "plots")
+    r = subprocess.run([sys.executable, tool, "plot", out, "--plot-dir", plots], capture_output=True, text=True)
+    check("plot exits 0", r.returncode == 0)
+    try:
+        import matplotlib  # noqa: F401
+        check("plot draws both figures", sorted(os.listdir(plots)) == ["campaign_lacey.png",
+                                                                     "campaign_one_minus_rsd.png"])
+    except ImportError:
+        check("plot says it has no matplotlib", "matplotlib not found" in r.stdout)
     run_dir = os.path.join(campaign, "case_x_s1")
     r = subprocess.run([sys.executable, tool, "snapshots", run_dir, run_dir + ".yaml", "0", "2", "2.5", "9"],
                        capture_output=True, text=True)
