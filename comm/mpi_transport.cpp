@@ -48,6 +48,7 @@ class MpiTransport final : public Transport {
   int size() const override { return size_; }
   int local_rank() const override { return local_rank_; }
 
+  // The sizes first, then the data as start_exchange sends it.
   void exchange(const std::vector<int>& peers, const std::vector<Bytes>& send, std::vector<Bytes>& recv) override {
     const std::size_t n = peers.size();
     std::vector<std::uint64_t> send_size(n), recv_size(n);
@@ -64,21 +65,18 @@ class MpiTransport final : public Transport {
     }
     wait_all(requests);
     recv.assign(n, Bytes());
+    std::vector<const unsigned char*> from(n);
+    std::vector<unsigned char*> to(n);
+    std::vector<std::size_t> send_bytes(n), recv_bytes(n);
     for (std::size_t k = 0; k < n; ++k) {
       recv[k].resize(recv_size[k]);
-      for (std::size_t off = 0; off < recv_size[k]; off += kChunk) {
-        requests.emplace_back();
-        GS_MPI_CHECK(MPI_Irecv(recv[k].data() + off, int(std::min(kChunk, recv_size[k] - off)), MPI_BYTE, peers[k],
-                               kDataTag, MPI_COMM_WORLD, &requests.back()));
-      }
+      from[k] = reinterpret_cast<const unsigned char*>(send[k].data());
+      to[k] = reinterpret_cast<unsigned char*>(recv[k].data());
+      send_bytes[k] = send_size[k];
+      recv_bytes[k] = recv_size[k];
     }
-    for (std::size_t k = 0; k < n; ++k)
-      for (std::size_t off = 0; off < send_size[k]; off += kChunk) {
-        requests.emplace_back();
-        GS_MPI_CHECK(MPI_Isend(send[k].data() + off, int(std::min(kChunk, send_size[k] - off)), MPI_BYTE, peers[k],
-                               kDataTag, MPI_COMM_WORLD, &requests.back()));
-      }
-    wait_all(requests);
+    start_exchange(peers, from, send_bytes, to, recv_bytes);
+    finish_exchange();
   }
 
   void start_exchange(const std::vector<int>& peers, const std::vector<const unsigned char*>& send,
@@ -91,14 +89,14 @@ class MpiTransport final : public Transport {
         started_.emplace_back();
         expected_.push_back({peers[k], count});
         GS_MPI_CHECK(
-            MPI_Irecv(recv[k] + off, count, MPI_BYTE, peers[k], kForwardTag, MPI_COMM_WORLD, &started_.back()));
+            MPI_Irecv(recv[k] + off, count, MPI_BYTE, peers[k], kDataTag, MPI_COMM_WORLD, &started_.back()));
       }
     for (std::size_t k = 0; k < peers.size(); ++k)
       for (std::size_t off = 0; off < send_bytes[k]; off += kChunk) {
         started_.emplace_back();
         // MPI 3 takes a const buffer; the cast serves older headers.
         GS_MPI_CHECK(MPI_Isend(const_cast<unsigned char*>(send[k]) + off, int(std::min(kChunk, send_bytes[k] - off)),
-                               MPI_BYTE, peers[k], kForwardTag, MPI_COMM_WORLD, &started_.back()));
+                               MPI_BYTE, peers[k], kDataTag, MPI_COMM_WORLD, &started_.back()));
       }
   }
   // A message shorter than agreed would leave stale bytes unnoticed (a longer
@@ -178,7 +176,7 @@ class MpiTransport final : public Transport {
   }
 
  private:
-  static constexpr int kSizeTag = 17, kDataTag = 18, kForwardTag = 19;
+  static constexpr int kSizeTag = 17, kDataTag = 18;
   static void wait_all(std::vector<MPI_Request>& requests) {
     GS_MPI_CHECK(MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE));
     requests.clear();

@@ -104,8 +104,8 @@ def scene(case, revolutions, froude, stiffness_scale, settle, suffix, layers=1, 
     deep = impact > 0.3
     slots = (f"contact_slots: 24            # the fill's impacts press spheres about {100 * impact:.0f} % of a diameter deep\n"
              if deep else "")
-    fraction = (f"{DEEP_TIME_STEP_FRACTION:g}}}          # {100 * impact:.0f} % overlaps: see tools/make_mixer_cases.py"
-                if deep else f"{TIME_STEP_FRACTION:g}}}")
+    fraction = DEEP_TIME_STEP_FRACTION if deep else TIME_STEP_FRACTION
+    fraction_note = f"          # {100 * impact:.0f} % overlaps: see tools/make_mixer_cases.py" if deep else ""
     duration = settle + revolutions * period
     # Snapshots at multiples of the settling time, so one lands on the marking;
     # the big beds less often (case d: 250 MB each).
@@ -154,7 +154,7 @@ particles:
 
 marking: {{time: {settle:g}, plane: {{point: [0, 0, 0], normal: [1, 0, 0]}}, front: 1, back: 0}}
 
-time_step: {{fraction_of_contact_time: {fraction}
+time_step: {{fraction_of_contact_time: {fraction:g}}}{fraction_note}
 duration: {duration:.6g}                 # settling + {revolutions} revolutions
 output:
   interval: {snapshot_every:g}                # snapshots at the marking and every {snapshot_every:g} s after it
