@@ -145,6 +145,14 @@ struct ForceKernel {
   // Whether particles i (at xi) and j overlap, and if so the kinematics of
   // their contact as seen from i. Public for the measurements' contact pass
   // (engine/contact_measure_kernel.hpp), which must see the same contacts.
+  // Seen from j every quantity is exactly the negation (the normal, the
+  // velocities) or exactly the same (overlap, effective mass and radius),
+  // and the law negates every rounded step with its inputs, so the two
+  // spheres of a contact get exactly opposite forces (Newton's third law to
+  // the bit; tests/physics/test_newton_third_law.cpp). Hence the two levers'
+  // spins are summed with each product rounded on its own: a fused
+  // mul_add(wi, lever_i, wj * lever_j) rounds the partner's product first,
+  // and from j's side the other one.
   GS_HD GS_INLINE bool particle_kinematics(Index i, Index j, const Vec3d& xi, ContactKinematics<Real>& k) const {
     const Vec3d d = box.separation(xi, position[j]);  // to the nearest image on the axes that wrap
     const double reach = double(radius[i]) + double(radius[j]);
@@ -156,7 +164,7 @@ struct ForceKernel {
     const Real ri = radius[i], rj = radius[j];
     const Real lever_i = ri - Real(0.5) * k.overlap, lever_j = rj - Real(0.5) * k.overlap;
     const Vec3<Real> wi(angular_velocity[i]), wj(angular_velocity[j]);
-    k.velocity = Vec3<Real>(velocity[i] - velocity[j]) - cross(mul_add(wi, lever_i, wj * lever_j), k.normal);
+    k.velocity = Vec3<Real>(velocity[i] - velocity[j]) - cross(add_rounded(wi * lever_i, wj * lever_j), k.normal);
     k.angular_velocity = wi - wj;
     const Real mi = mass[i], mj = mass[j];
     k.effective_mass = mi * mj / (mi + mj);
