@@ -51,6 +51,27 @@ SceneSpec pairs_scene(const Case& c, bool equal_radii, std::uint64_t seed) {
   scene.effects = c.effects;
   scene.pairs[0].rolling_friction = 0.1;
   scene.pairs[0].cohesion_energy_density = 2e3;
+  // A second, lighter and softer material: unlike pairs take the (m, n) entry
+  // from both sides.
+  MaterialSpec light = scene.materials[0];
+  light.name = "n";
+  light.density = 1500;
+  light.youngs_modulus = 5e6;
+  light.poisson_ratio = 0.25;
+  scene.materials.push_back(light);
+  PairSpec unlike = scene.pairs[0], like = scene.pairs[0];
+  unlike.material_b = 1;
+  unlike.stiffness_normal = 600;
+  unlike.stiffness_tangential = 200;
+  unlike.stiffness_rolling = 150;
+  unlike.restitution = 0.6;
+  unlike.friction = 0.3;
+  like.material_a = like.material_b = 1;
+  like.stiffness_normal = 800;
+  like.restitution = 0.7;
+  like.friction = 0.4;
+  scene.pairs.push_back(unlike);
+  scene.pairs.push_back(like);
   scene.domain_min = {0, 0, 0};
   scene.domain_max = {4 * kSpacing, 4 * kSpacing, 4 * kSpacing};
   scene.periodic_axes = 1u;  // x
@@ -72,6 +93,8 @@ SceneSpec pairs_scene(const Case& c, bool equal_radii, std::uint64_t seed) {
     }
     ParticleInit a = particle(next++, ra, xa, random_unit(g) * (0.005 * u(g)));
     ParticleInit b = particle(next++, rb, xb, random_unit(g) * (0.005 * u(g)));
+    a.material = p % 3 == 1 ? 1 : 0;  // like (m, m), unlike, like (n, n) in turn
+    b.material = p % 3 == 0 ? 0 : 1;
     a.angular_velocity = random_unit(g) * (400 * u(g));
     b.angular_velocity = random_unit(g) * (400 * u(g));
     scene.particles.push_back(a);
@@ -104,8 +127,9 @@ class NewtonThirdLawTest : public testing::TestWithParam<std::tuple<Backend, int
   }
 };
 
-// Random radii, every effect the model takes: the forces of each pair are
-// exactly opposite after kSteps (springs carried, some contacts sliding).
+// Random radii and materials, every effect the model takes: the forces of
+// each pair are exactly opposite after kSteps (springs carried, some
+// contacts sliding).
 TEST_P(NewtonThirdLawTest, PairForcesAreExactlyOpposite) {
   const Case c = the_case();
   const SceneSpec scene = pairs_scene(c, false, 7);
@@ -145,7 +169,8 @@ TEST_P(NewtonThirdLawTest, EqualSpheresGetEqualFrictionTorques) {
     if (d.x < -0.5 * length) d.x += length;
     const Vec3d n = d * (1 / norm(d)), f = s.force[row.at(a)];
     const double fn = dot(f, n), ft = norm(f - n * fn);
-    if (ft > 0.999 * kSliding * fn) ++sliding;
+    const double mu = a / 2 % 3 == 0 ? kSliding : a / 2 % 3 == 1 ? 0.3 : 0.4;
+    if (ft > 0.999 * mu * fn) ++sliding;
   }
   EXPECT_EQ(turning, kPairs + kPeriodicPairs);
   // Both branches of the law taken: some contacts slide, the others stick.
