@@ -148,11 +148,11 @@ struct ForceKernel {
   // Seen from j every quantity is exactly the negation (the normal, the
   // velocities) or exactly the same (overlap, effective mass and radius),
   // and the law negates every rounded step with its inputs, so the two
-  // spheres of a contact get exactly opposite forces (Newton's third law to
-  // the bit; tests/physics/test_newton_third_law.cpp). Hence the two levers'
-  // spins are summed with each product rounded on its own: a fused
-  // mul_add(wi, lever_i, wj * lever_j) rounds the partner's product first,
-  // and from j's side the other one.
+  // spheres of a contact get exactly opposite forces (Newton's third law with
+  // no rounding left over; tests/physics/test_newton_third_law.cpp). Hence
+  // the two levers' spins are summed with each product rounded on its own: a
+  // fused mul_add(wi, lever_i, wj * lever_j) rounds the partner's product
+  // first, and from j's side the other one.
   GS_HD GS_INLINE bool particle_kinematics(Index i, Index j, const Vec3d& xi, ContactKinematics<Real>& k) const {
     const Vec3d d = box.separation(xi, position[j]);  // to the nearest image on the axes that wrap
     const double reach = double(radius[i]) + double(radius[j]);

@@ -1,14 +1,16 @@
-// Newton's third law to the bit: the two spheres of a contact each compute it
-// from their own side (engine/force_kernel.hpp), and every quantity seen from
-// the partner is exactly the negation or exactly the same, so the forces must
-// be exactly opposite, and with equal radii the frictional torques exactly
-// equal (tau = -(L n) x f_t on both). Separate pairs, each sphere touching
-// only its partner, so a sphere's force is its one contact's. Random radii,
-// overlaps, directions, velocities and spins; the springs carried over a few
-// few steps, some pairs sliding; pairs across a periodic face too.
-// It failed when the lever arms' spins were summed with one fused
+// Newton's third law with no rounding left over: the two spheres of a
+// contact each compute it from their own side (engine/force_kernel.hpp), and
+// every quantity seen from the partner is exactly the negation or exactly the
+// same, so the forces must be exactly opposite (as numbers: a zero may differ
+// in sign), and with equal radii the frictional torques exactly equal
+// (tau = -(L n) x f_t on both). Separate pairs, each sphere touching only its
+// partner, so a sphere's force is its one contact's. Random radii, overlaps,
+// directions, velocities and spins; like and unlike materials; the springs
+// carried over a few steps, some pairs sliding; pairs across a periodic face
+// too. It failed when the lever arms' spins were summed with one fused
 // multiply-add (the partner's product rounded first, so from the other side
-// the other product): forces then differed in their last bits.
+// the other product): forces then differed in their last bits; and when one
+// side's material alone chose the pair's parameters.
 #include <gtest/gtest.h>
 
 #include <cmath>
