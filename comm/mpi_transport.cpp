@@ -83,6 +83,7 @@ class MpiTransport final : public Transport {
                       const std::vector<std::size_t>& send_bytes, const std::vector<unsigned char*>& recv,
                       const std::vector<std::size_t>& recv_bytes) override {
     if (!started_.empty()) throw std::logic_error("an exchange started before the last one finished");
+    expected_.clear();  // (left over where the last finish_exchange threw)
     for (std::size_t k = 0; k < peers.size(); ++k)
       for (std::size_t off = 0; off < recv_bytes[k]; off += kChunk) {
         const int count = int(std::min(kChunk, recv_bytes[k] - off));
@@ -102,18 +103,16 @@ class MpiTransport final : public Transport {
   // A message shorter than agreed would leave stale bytes unnoticed (a longer
   // one fails the receive itself): each receive's count is checked.
   void finish_exchange() override {
-    std::vector<MPI_Status> status(started_.size());
-    const int waited = MPI_Waitall(int(started_.size()), started_.data(), status.data());
+    status_.resize(started_.size());
+    const int waited = MPI_Waitall(int(started_.size()), started_.data(), status_.data());
     started_.clear();
-    std::vector<Expected> expected;
-    expected.swap(expected_);
     GS_MPI_CHECK(waited);
-    for (std::size_t r = 0; r < expected.size(); ++r) {
+    for (std::size_t r = 0; r < expected_.size(); ++r) {
       int count = 0;
-      GS_MPI_CHECK(MPI_Get_count(&status[r], MPI_BYTE, &count));
-      if (count != expected[r].bytes)
-        throw std::runtime_error("a message from rank " + std::to_string(expected[r].peer) + " has " +
-                                 std::to_string(count) + " bytes, " + std::to_string(expected[r].bytes) +
+      GS_MPI_CHECK(MPI_Get_count(&status_[r], MPI_BYTE, &count));
+      if (count != expected_[r].bytes)
+        throw std::runtime_error("a message from rank " + std::to_string(expected_[r].peer) + " has " +
+                                 std::to_string(count) + " bytes, " + std::to_string(expected_[r].bytes) +
                                  " expected");
     }
   }
@@ -187,8 +186,10 @@ class MpiTransport final : public Transport {
   struct Expected {
     int peer, bytes;
   };
+  // Kept from step to step (the forward runs every step), as is status_.
   std::vector<MPI_Request> started_;
   std::vector<Expected> expected_;
+  std::vector<MPI_Status> status_;
   // The outstanding start_min: its buffers must live until MPI_Wait.
   MPI_Request pending_ = MPI_REQUEST_NULL;
   int pending_value_ = 0, pending_result_ = 0;
