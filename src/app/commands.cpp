@@ -29,9 +29,9 @@ int command_check(const std::vector<std::string>& args) {
   std::printf("stable limit:   %.6g s (%.4g of the contact time), set by the %s\n", scene.stable_time_step,
               scene.stable_time_step / scene.contact_time, scene.stable_step_binding.c_str());
   std::printf("steps:          %lld\n", std::llround(scene.duration / scene.time_step));
-  std::printf("memory:         %s (%.0f bytes per particle, %s for %lld cells)\n",
+  std::printf("memory:         %s (%.0f bytes per particle, %s for %lld cells; the CPU backend %.0f more per particle)\n",
               human_bytes(m.total_bytes).c_str(), m.bytes_per_particle, human_bytes(m.cell_bytes).c_str(),
-              m.cells);
+              m.cells, m.cpu_pair_bytes);
   if (scene.meshes.n_meshes() > 0)
     std::printf("meshes:         %d triangles, %s with their binning (%.3g cells, up to %.3g entries)\n",
                 int(scene.meshes.n_triangles()), human_bytes(m.mesh_bytes).c_str(), m.mesh_cells, m.mesh_entries);

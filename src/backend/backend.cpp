@@ -62,6 +62,15 @@ int force_lanes_setting() {
   throw std::invalid_argument("GRAINSTORM_FORCE_LANES must be auto, 1, 2, 4, 8, 16 or 32, got '" + s + "'");
 }
 
+PairsOnceSetting pairs_once_setting() {
+  const char* v = std::getenv("GRAINSTORM_PAIRS_ONCE");
+  const std::string s = v ? v : "";
+  if (s.empty() || s == "auto") return PairsOnceSetting::automatic;
+  if (s == "1") return PairsOnceSetting::always;
+  if (s == "0") return PairsOnceSetting::never;
+  throw std::invalid_argument("GRAINSTORM_PAIRS_ONCE must be auto, 1 or 0, got '" + s + "'");
+}
+
 int force_lanes(long long n, int setting) {
   if (setting != 0) return setting;
   int lanes = 1;

@@ -29,6 +29,14 @@ constexpr long long kForceLaneThreads = 1 << 17;
 constexpr int kMaxForceLanes = 32;
 int force_lanes_setting();
 int force_lanes(long long n, int setting);
+// Whether the CPU computes each touching pair once for both spheres
+// (engine/force_kernel.hpp, pairs_of; engine/pairs_once_policy.hpp):
+// GRAINSTORM_PAIRS_ONCE unset or auto: where most list entries touch; 1:
+// always; 0: never, each sphere computes its own side, as the GPU does. The
+// same bits every way (the tests compare them). Any other value throws
+// std::invalid_argument naming the variable.
+enum class PairsOnceSetting { automatic, always, never };
+PairsOnceSetting pairs_once_setting();
 
 // The host threads this process runs its OpenMP loops on (OMP_NUM_THREADS or
 // the default), and the cores its CPU affinity lets them use. mpirun binds

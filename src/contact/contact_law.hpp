@@ -28,6 +28,7 @@ struct ContactKinematics {
   Real effective_mass;         // m_i m_j / (m_i + m_j); m_i against a wall
   Real effective_radius;       // r_i r_j / (r_i + r_j); r_i against a wall
   Real lever;                  // distance from the centre of i to the contact point
+  Real partner_lever;          // from the centre of j to it (particle pairs only)
 };
 
 template <class Real>
@@ -43,33 +44,67 @@ GS_HD GS_INLINE Real cohesion_force(Real energy_density, Real overlap, Real effe
   return energy_density * Real(3.14159265358979323846) * effective_radius * overlap;
 }
 
+// What the law gives one contact, as seen from particle i, before it becomes
+// i's load: computed once per pair, it gives the partner's load too
+// (mirrored(), then load_on() with the partner's normal and lever).
+template <class Real>
+struct ContactForces {
+  Vec3<Real> force;           // on i: the normal force (cohesion included) plus the tangential one
+  Vec3<Real> tangential;      // the tangential (friction) force on i
+  Vec3<Real> rolling_torque;  // the rolling resistance's couple on i
+};
+
+// The law of one contact; updates its history `state`.
 template <class Real, class Model, unsigned Effects>
-GS_HD GS_INLINE ContactLoad<Real> contact_load(const PairParams<Real, Model>& p, const ContactKinematics<Real>& c,
-                                               ContactState<Real>& state, Real dt) {
+GS_HD GS_INLINE ContactForces<Real> contact_forces(const PairParams<Real, Model>& p, const ContactKinematics<Real>& c,
+                                                   ContactState<Real>& state, Real dt) {
   const Real normal_speed = dot(c.velocity, c.normal);
   const Real overlap_rate = -normal_speed;
   const auto local = Model::local(p.model, c.overlap, c.effective_mass, c.effective_radius);
   const Real normal_force = Model::normal_force(p.model, c.overlap, overlap_rate, local, state);  // >= 0
-  ContactLoad<Real> load;
+  ContactForces<Real> f;
   Real total_normal = normal_force;  // cohesion, the only attraction, comes after the clamp
   if constexpr ((Effects & kCohesion) != 0) total_normal -= cohesion_force(p.cohesion, c.overlap, c.effective_radius);
-  load.force = c.normal * total_normal;
+  f.force = c.normal * total_normal;
 
   if constexpr ((Effects & kFriction) != 0) {
     const Vec3<Real> tangential_velocity = mul_add(c.normal, -normal_speed, c.velocity);
     const TangentialCoefficients<Real> t = Model::tangential(p.model, local);
-    const Vec3<Real> f_t = tangential_force(state.tangential, c.normal, tangential_velocity, t.stiffness,
-                                            t.damping, p.friction, normal_force, dt);
-    load.force += f_t;
-    load.torque = cross(c.normal * (-c.lever), f_t);
+    f.tangential = tangential_force(state.tangential, c.normal, tangential_velocity, t.stiffness, t.damping,
+                                    p.friction, normal_force, dt);
+    f.force += f.tangential;
   }
   if constexpr ((Effects & kRollingResistance) != 0) {
     const Vec3<Real> spin = c.normal * dot(c.angular_velocity, c.normal);  // twisting is not resisted
     const Vec3<Real> rolling_velocity = (c.angular_velocity - spin) * c.effective_radius;
-    load.torque += rolling_torque(state.rolling, c.normal, rolling_velocity, p.stiffness_rolling,
-                                  p.rolling_friction, normal_force, c.effective_radius, dt);
+    f.rolling_torque = rolling_torque(state.rolling, c.normal, rolling_velocity, p.stiffness_rolling,
+                                      p.rolling_friction, normal_force, c.effective_radius, dt);
   }
+  return f;
+}
+
+// The load on a sphere whose contact has forces f, normal `normal` (towards
+// the sphere) and lever `lever` (from its centre to the contact point).
+template <class Real, unsigned Effects>
+GS_HD GS_INLINE ContactLoad<Real> load_on(const ContactForces<Real>& f, const Vec3<Real>& normal, Real lever) {
+  ContactLoad<Real> load;
+  load.force = f.force;
+  if constexpr ((Effects & kFriction) != 0) load.torque = cross(normal * (-lever), f.tangential);
+  if constexpr ((Effects & kRollingResistance) != 0) load.torque += f.rolling_torque;
   return load;
+}
+
+// The same forces seen from the partner: every one negated (exactly, as the
+// partner's own computation gives them: force_kernel.hpp, particle_kinematics).
+template <class Real>
+GS_HD GS_INLINE ContactForces<Real> mirrored(const ContactForces<Real>& f) {
+  return {-f.force, -f.tangential, -f.rolling_torque};
+}
+
+template <class Real, class Model, unsigned Effects>
+GS_HD GS_INLINE ContactLoad<Real> contact_load(const PairParams<Real, Model>& p, const ContactKinematics<Real>& c,
+                                               ContactState<Real>& state, Real dt) {
+  return load_on<Real, Effects>(contact_forces<Real, Model, Effects>(p, c, state, dt), c.normal, c.lever);
 }
 
 }  // namespace gs

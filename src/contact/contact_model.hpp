@@ -34,6 +34,25 @@ struct ContactState {
 #undef GS_DECLARE_FIELD
 };
 
+// A history field as the partner of the contact keeps it: a vector of the
+// pair turns with the normal (negated), a scalar is the pair's own.
+template <class Real>
+GS_HD GS_INLINE Vec3<Real> mirrored_field(const Vec3<Real>& v) {
+  return -v;
+}
+template <class Real>
+GS_HD GS_INLINE Real mirrored_field(Real s) {
+  return s;
+}
+template <class Real>
+GS_HD GS_INLINE ContactState<Real> mirrored(const ContactState<Real>& s) {
+  ContactState<Real> m;
+#define GS_MIRROR_FIELD(name, value, bit) m.name = mirrored_field<Real>(s.name);
+  GS_HISTORY_FIELDS(GS_MIRROR_FIELD)
+#undef GS_MIRROR_FIELD
+  return m;
+}
+
 // max(0, f), written out so that it is the same on host and device: the
 // normal laws are clamped, so that a separating contact does not pull.
 template <class Real>

@@ -14,8 +14,20 @@
 
 #include "contact/contact_model.hpp"
 #include "core/hd.hpp"
+#include "core/vec3.hpp"
 
 namespace gs {
+
+// x with a zero made +0 (-0 + +0 is +0 when rounding to nearest; any other x
+// is left as it is). add_rounded: never folded away or fused.
+template <class Real>
+GS_HD GS_INLINE Real positive_zeros(Real x) {
+  return add_rounded(x, Real(0));
+}
+template <class Real>
+GS_HD GS_INLINE Vec3<Real> positive_zeros(const Vec3<Real>& v) {
+  return add_rounded(v, Vec3<Real>());
+}
 
 // Kept: the history fields of the run (HistoryField bits).
 template <class Real, unsigned Kept>
@@ -34,11 +46,15 @@ struct PairSprings {
     return state;
   }
 
-  // The state of a touching pair.
+  // The state of a touching pair, each zero stored as +0: the two spheres
+  // of a pair compute springs that are exact negations of each other but
+  // for the sign of a zero (x - x is +0 from either side), so with zeros
+  // made +0 the partner's entry has the same bits whether the partner
+  // computed it or took it mirrored from this one (ForceKernel::pair_once).
   GS_HD void store(std::size_t k, const ContactState<Real>& state) const {
     touching[k] = 1;
 #define GS_STORE_FIELD(name, value, bit) \
-  if constexpr ((Kept & (bit)) != 0) name[k] = state.name;
+  if constexpr ((Kept & (bit)) != 0) name[k] = positive_zeros(state.name);
     GS_HISTORY_FIELDS(GS_STORE_FIELD)
 #undef GS_STORE_FIELD
   }

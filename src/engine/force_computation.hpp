@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/contact_measure.hpp"
+#include "engine/neighbour_search.hpp"
 #include "engine/particle_store.hpp"
 #include "walls/mesh.hpp"
 #include "walls/wall.hpp"
@@ -24,10 +25,13 @@ class ForceComputation {
 
   // Forces, torques and history of every owned particle at the store's state.
   virtual void compute(ParticleStore& s, double dt, long long step) = 0;
-  // The same for the owned particles at store indices order[0, count)
-  // (backend memory) alone: each gets the force, torque and history compute()
-  // would give it, its sums in the same order.
-  virtual void compute_at(ParticleStore& s, double dt, long long step, const Index* order, Index count) = 0;
+  // The same in two parts (Simulation::compute_forces): the interior
+  // particles of `split`, which reads nothing of the ghosts, then the
+  // boundary ones, once the ghosts hold their fields. Each particle gets the
+  // force, torque and history compute() would give it, its sums in the same
+  // order.
+  virtual void compute_interior(ParticleStore& s, double dt, long long step, const GhostSplit& split) = 0;
+  virtual void compute_boundary(ParticleStore& s, double dt, long long step, const GhostSplit& split) = 0;
   // Load of each owned particle (store order) on each mesh, entry
   // i * n_meshes + m, from the last computation; empty without meshes.
   virtual std::vector<MeshLoad> particle_mesh_loads(const ParticleStore& s) const = 0;

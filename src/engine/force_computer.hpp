@@ -13,6 +13,7 @@
 #include "engine/force_computation.hpp"
 #include "engine/mesh_arrays.hpp"
 #include "engine/neighbour_finder.hpp"
+#include "engine/pairs_once_policy.hpp"
 #include "engine/step_state.hpp"
 
 namespace gs {
@@ -21,6 +22,7 @@ template <class Exec, class Real, class Model, unsigned Effects>
 class ForceComputer final : public ForceComputation {
   static constexpr unsigned kKept = history_fields_kept<Model>(Effects);
   static constexpr bool kTorque = makes_torques(Effects);
+  static constexpr bool kPairsOnce = Exec::pairs_once;  // the CPU: engine/force_kernel.hpp, pairs_of
 
  public:
   ForceComputer(const std::vector<MaterialSpec>& materials, const std::vector<PairSpec>& pairs, StepState<Real>& state,
@@ -58,12 +60,54 @@ class ForceComputer final : public ForceComputation {
 
   void compute(ParticleStore& s, double dt, long long step) override {
     meshes_.reserve(std::size_t(s.size()));
-    with_candidates(s, [&](const auto& candidates) { launch(s.n_owned, kernel(s, candidates, dt, step)); });
+    with_candidates(s, [&](const auto& candidates) {
+      const auto k = kernel(s, candidates, dt, step);
+      if constexpr (kPairsOnce) {
+        if (policy_.choose(step)) {
+          const EntryLoads<Real> e = entry_loads(s);
+          Exec::parallel_for(s.n_owned, PairPass<decltype(k)>{k, PairsOf::all, e});
+          Exec::parallel_for(s.n_owned, SumPass<decltype(k)>{k, e});
+          count_touching(s, step);
+          return;
+        }
+      }
+      launch(s.n_owned, k);
+    });
   }
-  void compute_at(ParticleStore& s, double dt, long long step, const Index* order, Index count) override {
+  // Each pair once: the pairs among all the owned particles first, whichever
+  // of the two is an interior one; then the interior's sums.
+  void compute_interior(ParticleStore& s, double dt, long long step, const GhostSplit& split) override {
     meshes_.reserve(std::size_t(s.size()));
     with_candidates(s, [&](const auto& candidates) {
-      launch(count, AtIndices<decltype(kernel(s, candidates, dt, step))>{kernel(s, candidates, dt, step), order});
+      const auto k = kernel(s, candidates, dt, step);
+      if constexpr (kPairsOnce) {
+        split_once_ = policy_.choose(step);  // the boundary's part goes the same way
+        if (split_once_) {
+          const EntryLoads<Real> e = entry_loads(s);
+          Exec::parallel_for(s.n_owned, PairPass<decltype(k)>{k, PairsOf::owned, e});
+          Exec::parallel_for(split.interior, AtIndices<SumPass<decltype(k)>>{{k, e}, split.order});
+          return;
+        }
+      }
+      launch(split.interior, AtIndices<decltype(k)>{k, split.order});
+    });
+  }
+  // Then the pairs with ghosts, and the boundary's sums.
+  void compute_boundary(ParticleStore& s, double dt, long long step, const GhostSplit& split) override {
+    meshes_.reserve(std::size_t(s.size()));
+    const Index* boundary = split.order + split.interior;
+    with_candidates(s, [&](const auto& candidates) {
+      const auto k = kernel(s, candidates, dt, step);
+      if constexpr (kPairsOnce) {
+        if (split_once_) {
+          const EntryLoads<Real> e = entry_loads(s);
+          Exec::parallel_for(split.boundary, AtIndices<PairPass<decltype(k)>>{{k, PairsOf::ghosts, e}, boundary});
+          Exec::parallel_for(split.boundary, AtIndices<SumPass<decltype(k)>>{{k, e}, boundary});
+          count_touching(s, step);
+          return;
+        }
+      }
+      launch(split.boundary, AtIndices<decltype(k)>{k, boundary});
     });
   }
 
@@ -90,7 +134,8 @@ class ForceComputer final : public ForceComputation {
     return h;
   }
   std::size_t bytes() const override {
-    return pairs_.bytes() + walls_.bytes() + wall_screens_.bytes() + meshes_.bytes() + measures_.bytes();
+    return pairs_.bytes() + walls_.bytes() + wall_screens_.bytes() + meshes_.bytes() + measures_.bytes() +
+           entry_load_.bytes() + entry_touching_.bytes();
   }
 
  private:
@@ -123,6 +168,35 @@ class ForceComputer final : public ForceComputation {
             meshes_.view(), meshes_.loads(), st_.pairs.current.template view<kKept>(), slot_table(), st_.row_width,
             st_.forces.force.data(), kTorque ? st_.forces.torque.data() : nullptr, Real(dt), st_.fault.data(), step};
   }
+  // The two passes of each pair once, one particle per call.
+  template <class K>
+  struct PairPass {
+    static constexpr int kMinBlocksPerSM = K::kMinBlocksPerSM;
+    K k;
+    PairsOf which;
+    EntryLoads<Real> e;
+    GS_HD void operator()(Index i) const { k.pairs_of(i, which, e); }
+  };
+  template <class K>
+  struct SumPass {
+    static constexpr int kMinBlocksPerSM = K::kMinBlocksPerSM;
+    K k;
+    EntryLoads<Real> e;
+    GS_HD void operator()(Index i) const { k.sum_entries(i, e); }
+  };
+  // Tells the policy how many list entries touch per owned particle.
+  void count_touching(const ParticleStore& s, long long step) {
+    const std::size_t touching = Exec::count_set(entry_touching_.data(), entry_touching_.size());
+    policy_.counted(s.n_owned > 0 ? double(touching) / double(s.n_owned) : 0.0, step);
+  }
+  // The loads per list entry, sized to the list (each pass writes every entry it reads).
+  EntryLoads<Real> entry_loads(const ParticleStore& s) {
+    const VerletList& v = neighbours_.verlet();
+    entry_load_.resize_discarding(v.list.size());
+    entry_touching_.resize_discarding(v.list.size());
+    return {entry_load_.data(), entry_touching_.data(), v.reverse.data(), s.n_owned};
+  }
+
   SlotTable<Real, kKept> slot_table() {
     ContactHistory<Real>& h = st_.history;
     SlotTable<Real, kKept> t;
@@ -145,6 +219,12 @@ class ForceComputer final : public ForceComputation {
   const NeighbourFinder<Exec>& neighbours_;
   // GRAINSTORM_FORCE_LANES, read once, not at every step (the CPU has no lanes).
   int lanes_setting_ = Exec::backend == Backend::cuda ? force_lanes_setting() : 1;
+  // Each pair once or each side (GRAINSTORM_PAIRS_ONCE, read once), where
+  // the backend computes pairs once at all; the way of the split step in hand.
+  PairsOncePolicy policy_{kPairsOnce ? pairs_once_setting() : PairsOnceSetting::never};
+  bool split_once_ = false;
+  DeviceArray<ContactLoad<Real>> entry_load_{Exec::backend};  // each pair once: the loads per list entry
+  DeviceArray<std::uint8_t> entry_touching_{Exec::backend};
   DeviceArray<ContactMeasure> measures_{Exec::backend};  // the contact pass's, sized at its first use
 };
 

@@ -7,7 +7,9 @@
 // by ascending id), then the walls in scene order, then triangle meshes, their
 // contacts in ascending triangle order of the particle's mesh bin. On a GPU
 // a small scene gives each particle a group of lanes instead (in_group): the
-// same contacts, added in the same order, so the same bits.
+// same contacts, added in the same order, so the same bits. The CPU may
+// compute each touching pair once for both spheres instead (pairs_of, then
+// sum_entries; engine/pairs_once_policy.hpp says when): the same bits again.
 #include <type_traits>
 
 #include "contact/contact_models.hpp"
@@ -45,6 +47,21 @@ struct SameMeshContact {
            mesh_features_adjacent(*meshes, key, mesh_feature_key_of(partner));
   }
 };
+
+// Where each touching pair of owned particles is computed once for both of
+// its spheres (ForceKernel::pairs_of, then sum_entries: the CPU), what the
+// first pass leaves per Verlet list entry for the second.
+template <class Real>
+struct EntryLoads {
+  ContactLoad<Real>* load;    // on the row's particle, where touching
+  std::uint8_t* touching;     // 1 where the pair touches
+  const ListOffset* reverse;  // the partner's entry that names the row's particle (neighbor/verlet_list.hpp)
+  Index n_owned;              // partners from here on are ghosts
+};
+
+// The partners whose pairs a call of pairs_of computes: a rank computes the
+// pairs among its owned particles while the ghosts' fields travel.
+enum class PairsOf { owned, ghosts, all };
 
 template <class Real, class Model, unsigned Effects, class Candidates = CellCandidates>
 struct ForceKernel {
@@ -142,6 +159,54 @@ struct ForceKernel {
   }
 #endif
 
+  // Each pair once, first pass: the pairs of particle i's list entries that
+  // i computes. With an owned partner j > i whose row names i, for both
+  // (pair_once): j's load and springs are those j's own computation would
+  // give, bit for bit (the law is antisymmetric, particle_kinematics; the
+  // springs' zeros are stored +0, contact/pair_springs.hpp); such a pair
+  // with j < i is j's to compute. With a ghost (or a partner whose row does
+  // not name i), i's side alone, as operator() does.
+  GS_HD void pairs_of(Index i, PairsOf which, const EntryLoads<Real>& e) const {
+    static_assert(std::is_same_v<Candidates, ListCandidates>, "pairs are computed per Verlet list entry");
+    const Vec3d xi = position[i];
+    for (ListOffset k = candidates.begin[i]; k < candidates.begin[i + 1]; ++k) {
+      const Index j = candidates.list[k];
+      const bool owned = j < e.n_owned;
+      if (which == (owned ? PairsOf::ghosts : PairsOf::owned)) continue;
+      const ListOffset r = owned ? e.reverse[k] : kNoEntry;
+      if (r == kNoEntry) e.touching[k] = particle_contact(i, j, k, xi, e.load[k]) ? 1 : 0;
+      else if (j > i) pair_once(i, j, k, r, xi, e);
+    }
+  }
+
+  // Each pair once, second pass: particle i's sums from its entries' loads,
+  // in list order, then its walls and meshes, as operator() adds them: the
+  // same bits.
+  GS_HD void sum_entries(Index i, const EntryLoads<Real>& e) const {
+    int pairs_touching = 0;
+    ContactLoad<Real> total = entries_sum(i, e, pairs_touching);
+    unsigned touched = 0;
+    const Vec3d xi = position[i];
+    add_wall_contacts(i, xi, total, touched);
+    if (meshes.n_triangles > 0) add_mesh_contacts(i, xi, total, touched);
+    finish(i, total, touched, pairs_touching);
+  }
+
+  // The sum of i's touching entries' loads, in list order, and their count.
+  // Its own function, so that the running sum stays in registers (the
+  // total that the walls' functions take by reference lives in memory).
+  GS_HD GS_INLINE ContactLoad<Real> entries_sum(Index i, const EntryLoads<Real>& e, int& touching) const {
+    ContactLoad<Real> sum;
+    int n = 0;
+    for (ListOffset k = candidates.begin[i]; k < candidates.begin[i + 1]; ++k) {
+      if (!e.touching[k]) continue;
+      add_to(sum, e.load[k]);
+      ++n;
+    }
+    touching = n;
+    return sum;
+  }
+
   // Whether particles i (at xi) and j overlap, and if so the kinematics of
   // their contact as seen from i. Public for the measurements' contact pass
   // (engine/contact_measure_kernel.hpp), which must see the same contacts.
@@ -170,6 +235,7 @@ struct ForceKernel {
     k.effective_mass = mi * mj / (mi + mj);
     k.effective_radius = ri * rj / (ri + rj);
     k.lever = lever_i;
+    k.partner_lever = lever_j;
     return true;
   }
 
@@ -310,6 +376,31 @@ struct ForceKernel {
       on_mesh.force -= f;
       on_mesh.torque -= moment;
     }
+  }
+
+  // The pair (i, j) of i's list entry k and j's entry r (which names i),
+  // for both spheres: the law once, j's load and springs mirrored.
+  GS_HD void pair_once(Index i, Index j, ListOffset k, ListOffset r, const Vec3d& xi,
+                       const EntryLoads<Real>& e) const {
+    ContactKinematics<Real> c;
+    if (!particle_kinematics(i, j, xi, c)) {
+      e.touching[k] = e.touching[r] = 0;
+      if constexpr (kHistory) {
+        pair_history.release(k);
+        pair_history.release(r);
+      }
+      return;
+    }
+    ContactState<Real> state;
+    if constexpr (kHistory) state = pair_history.load(k);
+    const ContactForces<Real> f = contact_forces<Real, Model, Effects>(pairs(material[i], material[j]), c, state, dt);
+    if constexpr (kHistory) {
+      pair_history.store(k, state);
+      pair_history.store(r, mirrored(state));
+    }
+    e.load[k] = load_on<Real, Effects>(f, c.normal, c.lever);
+    e.load[r] = load_on<Real, Effects>(mirrored(f), -c.normal, c.partner_lever);
+    e.touching[k] = e.touching[r] = 1;
   }
 
   // The pair (i, j) of list entry `entry`: its springs are that entry's. 1

@@ -51,6 +51,7 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   m.staging_bytes = std::max({double(sizeof(Vec3d)), double(2 * sizeof(std::uint64_t) + sizeof(Index)), kept});
   m.bytes_per_particle =
       m.field_bytes + m.force_bytes + m.history_bytes + m.list_bytes + m.staging_bytes + m.rebuild_bytes;
+  m.cpu_pair_bytes = (sizeof(ListOffset) + 6 * real + sizeof(std::uint8_t)) * kEstimatedListEntries;
   const double r = largest_radius(scene);
   if (r > 0) {
     const CellGrid g = make_cell_grid(scene.domain_min, scene.domain_max, 2 * r, periodic_box(scene));

@@ -17,6 +17,10 @@ struct MemoryEstimate {
   double list_bytes = 0;          // Verlet list and the cell list's order, per particle
   double staging_bytes = 0;       // the staging buffer at its largest (the kept contacts), per particle
   double cell_bytes = 0;          // cell tables
+  // The CPU's alone, not in bytes_per_particle: computing each pair once
+  // keeps per list entry the partner's reverse entry, a load (force and
+  // torque) and a touching flag (engine/force_kernel.hpp, EntryLoads), per particle.
+  double cpu_pair_bytes = 0;
   long long cells = 0;
   double mesh_bytes = 0;          // mesh arrays and their binning (a bound, walls/mesh.hpp)
   double mesh_cells = 0;          // cells of the meshes' grids

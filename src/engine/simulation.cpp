@@ -329,11 +329,11 @@ void Simulation::compute_forces(double dt, long long step) {
   ForceComputation& forces = kernels_->forces();
   const GhostSplit split = kernels_->neighbours().ghost_split();
   if (forward_in_flight_ && split.valid()) {
-    forces.compute_at(store_, dt, step, split.order, split.interior);
+    forces.compute_interior(store_, dt, step, split);
     timings_.forces += phase_seconds(t0);
     finish_forward();
     t0 = Clock::now();
-    forces.compute_at(store_, dt, step, split.order + split.interior, split.boundary);
+    forces.compute_boundary(store_, dt, step, split);
   } else {
     finish_forward();  // a rank without ghosts still takes part
     t0 = Clock::now();

@@ -53,6 +53,8 @@ namespace gs {
 // entries (4e8 spheres of ten neighbours) costs 4 bytes per particle, not 8.
 // A build that would hold more is refused (OffsetsWrapped).
 using ListOffset = std::uint32_t;
+// An entry that names no entry (VerletList::reverse of a ghost partner).
+constexpr ListOffset kNoEntry = ~ListOffset(0);
 
 // Contact candidates of particle i from the list, in ascending id: visit(j,
 // k) with k the entry's index (where the pair's springs live:
@@ -70,11 +72,15 @@ struct ListCandidates {
 };
 
 struct VerletList {
-  explicit VerletList(Backend b) : begin(b), list(b), reference(b), scan_scratch(b) {}
+  explicit VerletList(Backend b) : begin(b), list(b), reference(b), reverse(b), scan_scratch(b) {}
 
   DeviceArray<ListOffset> begin;
   DeviceArray<Index> list;
   DeviceArray<Vec3f> reference;  // owned particles' positions at the build, rounded to fp32
+  // Per entry (i, j): the entry of j's row that names i, or kNoEntry where j
+  // is a ghost (no row). Kept where each pair is computed once for both of
+  // its spheres (Exec::pairs_once: the CPU); empty elsewhere.
+  DeviceArray<ListOffset> reverse;
   PeriodicBox box;               // the grid's at the build: moves are measured to the nearest image
   std::vector<std::vector<Index>> parts;  // per thread, while building (CPU)
   DeviceArray<unsigned char> scan_scratch;  // the count scan's (GPU), sized at its first use
@@ -83,7 +89,9 @@ struct VerletList {
   bool valid = false;
 
   ListCandidates candidates() const { return {begin.data(), list.data()}; }
-  std::size_t bytes() const { return begin.bytes() + list.bytes() + reference.bytes() + scan_scratch.bytes(); }
+  std::size_t bytes() const {
+    return begin.bytes() + list.bytes() + reference.bytes() + reverse.bytes() + scan_scratch.bytes();
+  }
 };
 
 // Whether owned particle i's list names a ghost (a store index past the
@@ -254,6 +262,35 @@ struct ListFillKernel {
   }
 };
 
+// The reverse entries of owned particle i's row (VerletList::reverse). The
+// list is symmetric among owned particles (WithinSkin is: the separation
+// from either side is the other's exact negation) and each row is in
+// ascending id, so i's entry in j's row is found by bisection. A row that
+// does not name i (not expected) gets kNoEntry: each side then computes the
+// pair alone, as without reverse entries.
+struct ReverseEntryKernel {
+  const ListOffset* begin;
+  const Index* list;
+  const ParticleId* id;
+  Index n_owned;
+  ListOffset* reverse;
+  GS_HD void operator()(Index i) const {
+    for (ListOffset k = begin[i]; k < begin[i + 1]; ++k) {
+      const Index j = list[k];
+      reverse[k] = j < n_owned ? entry_naming(j, i) : kNoEntry;
+    }
+  }
+  GS_HD ListOffset entry_naming(Index j, Index i) const {
+    ListOffset lo = begin[j], hi = begin[j + 1];
+    while (lo < hi) {
+      const ListOffset mid = lo + (hi - lo) / 2;
+      if (id[list[mid]] < id[i]) lo = mid + 1;
+      else hi = mid;
+    }
+    return lo < begin[j + 1] && list[lo] == i ? lo : kNoEntry;
+  }
+};
+
 // Whether the scan of the counts into offsets wrapped past 2^32 (a list too
 // long for 32-bit offsets): each count is below 2^32, so a running sum that
 // wrapped is smaller than the one before it somewhere.
@@ -272,6 +309,10 @@ void build_verlet_list(VerletList& v, const CellList& cells, const Vec3d* positi
                          WithinSkin{position, radius, skin, cells.grid.box}, id, n_owned);
   v.reference.resize(std::size_t(n_owned));
   Exec::parallel_for(n_owned, RoundReference{position, v.reference.data()});
+  if constexpr (Exec::pairs_once) {
+    v.reverse.resize_discarding(v.list.size());
+    Exec::parallel_for(n_owned, ReverseEntryKernel{v.begin.data(), v.list.data(), id, n_owned, v.reverse.data()});
+  }
   v.skin = skin;
   v.box = cells.grid.box;
   v.n_owned = n_owned;

@@ -17,30 +17,21 @@
 #include "engine/simulation.hpp"
 #include "io/state_digest.hpp"
 #include "scene/scene_loader.hpp"
+#include "support/support.hpp"
 
 namespace gs {
 namespace {
 
-// Sets GRAINSTORM_FORCE_LANES for one test and restores it after.
+// Each test sets GRAINSTORM_FORCE_LANES as it needs; it is put back after.
 class ForceLanesTest : public testing::Test {
  protected:
-  void SetUp() override {
-    const char* v = std::getenv(kVariable);
-    had_ = v != nullptr;
-    if (had_) old_ = v;
-  }
-  void TearDown() override {
-    if (had_) setenv(kVariable, old_.c_str(), 1);
-    else unsetenv(kVariable);
-  }
   static constexpr const char* kVariable = "GRAINSTORM_FORCE_LANES";
-  bool had_ = false;
-  std::string old_;
+  test::ScopedEnv env_{kVariable, nullptr};
 };
 
 TEST_F(ForceLanesTest, UnknownSettingIsRefusedByName) {
   for (const char* bad : {"3", "64", "0", "many", "16 "}) {
-    setenv(kVariable, bad, 1);
+    env_.set(bad);
     try {
       force_lanes_setting();
       ADD_FAILURE() << bad << " was taken";
@@ -53,10 +44,10 @@ TEST_F(ForceLanesTest, UnknownSettingIsRefusedByName) {
 
 TEST_F(ForceLanesTest, SettingIsTaken) {
   for (int lanes = 1; lanes <= kMaxForceLanes; lanes *= 2) {
-    setenv(kVariable, std::to_string(lanes).c_str(), 1);
+    env_.set(std::to_string(lanes).c_str());
     EXPECT_EQ(force_lanes(10'000'000, force_lanes_setting()), lanes);
   }
-  setenv(kVariable, "auto", 1);
+  env_.set("auto");
   EXPECT_EQ(force_lanes_setting(), 0);
   EXPECT_EQ(force_lanes(10'000'000, force_lanes_setting()), 1);
 }
@@ -64,7 +55,7 @@ TEST_F(ForceLanesTest, SettingIsTaken) {
 // Unset: lanes only where one thread per particle leaves the GPU mostly idle,
 // as many as keep the threads under kForceLaneThreads.
 TEST_F(ForceLanesTest, AutomaticLanesServeOnlySmallScenes) {
-  unsetenv(kVariable);
+  env_.set(nullptr);
   ASSERT_EQ(force_lanes_setting(), 0);
   EXPECT_EQ(force_lanes(7680, 0), 16);  // mixer case a
   EXPECT_EQ(force_lanes(100, 0), kMaxForceLanes);
@@ -92,7 +83,7 @@ TEST_F(ForceLanesTest, GroupsOfLanesGiveTheBitsOfOneThread) {
   constexpr long long kSteps = 10000;
   std::uint64_t one_thread = 0;
   for (const char* lanes : {"1", "2", "4", "16", "32"}) {
-    setenv(kVariable, lanes, 1);
+    env_.set(lanes);
     Simulation sim(scene, {Backend::cuda});
     sim.run(kSteps);
     const std::uint64_t digest = state_digest(sim.snapshot(), sim.history());

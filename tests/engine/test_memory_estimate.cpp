@@ -37,6 +37,10 @@ SceneSpec lattice_scene(int side, unsigned effects, double spacing = 0.002001) {
   return scene;
 }
 
+// The CPU's bytes per list entry for computing each pair once, in fp32: a
+// reverse entry 4, a load (force and torque) 24, a touching flag 1.
+constexpr double kCpuPairEntry = 4 + 24 + 1;
+
 // Per particle, from the declarations: id 4, material and marker 1 each,
 // radius, mass and inertia 4 each, position, velocity and angular velocity
 // 24 each, orientation 16; fp32 force and torque 12 each; 4 surface slots
@@ -54,6 +58,7 @@ TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   EXPECT_EQ(m.staging_bytes, 12 * (4 + 12));
   EXPECT_EQ(m.rebuild_bytes, 4 + 4);
   EXPECT_EQ(m.bytes_per_particle, 106 + 24 + 220 + 68 + 192 + 8);
+  EXPECT_EQ(m.cpu_pair_bytes, 12 * kCpuPairEntry);
   const MemoryEstimate none = estimate_memory(lattice_scene(2, 0));
   EXPECT_EQ(none.history_bytes, 0);
   EXPECT_EQ(none.force_bytes, 12);  // no torque without friction
@@ -83,8 +88,8 @@ Measured measure(const SceneSpec& scene, long long steps) {
 }
 
 // The run's peak against the estimate with the lattice's own list entries
-// (the estimate assumes 12), each 4 bytes in the list and, with friction, 13
-// of pair history, and its own touching contacts (the estimate assumes 12)
+// (the estimate assumes 12), each 4 bytes in the list, with friction 13 of
+// pair history, and kCpuPairEntry of the CPU's own, and its own touching contacts (the estimate assumes 12)
 // kept in the staging buffer at a rebuild, 16 bytes each. A static bed is
 // never re-sorted, so its staging buffer holds the sort's 20 bytes, and
 // builds its list once (nothing to carry over); a bed drifting as one body
@@ -111,8 +116,12 @@ TEST(MemoryEstimate, MatchesTheRunsPeakOnTheCpu) {
       const double missing = kEstimatedListEntries - entries, pair_entry = effects != 0 ? 1 + 12 : 0;
       EXPECT_EQ(got.contacts_per_particle, 0);  // so the kept contacts take no room
       const double staging = drift ? 24 : 20;
-      double expected = m.bytes_per_particle - missing * (4 + pair_entry) - (m.staging_bytes - staging);
-      if (!drift && effects != 0) expected -= m.rebuild_bytes - 4;  // its one build: the kept offsets beside the new list
+      double expected = m.bytes_per_particle - missing * (4 + pair_entry) - (m.staging_bytes - staging) +
+                        entries * kCpuPairEntry;
+      // Its one build (the kept offsets beside the new list) comes before the
+      // first force computation allocates the CPU's loads per entry: the
+      // peak is after it.
+      if (!drift && effects != 0) expected -= m.rebuild_bytes;
       // Within the cell offsets (the estimate's cells, one diameter, are more
       // than the run's) and a byte per particle: the fault flag, the pair
       // table, alignment.
@@ -129,7 +138,7 @@ TEST(MemoryEstimate, MatchesTheRunsPeakOnTheCpu) {
 // contacts throughout), drifting as one body, rebuilt every 20 steps. Its
 // peak is what it holds, with the staging buffer at 6 contacts of 16 bytes,
 // plus the origin rows and the kept offsets (8): the estimate with 6 entries
-// and 6 contacts instead of 12. Held beside the new list, the old list's
+// and 6 contacts instead of 12, and the CPU's kCpuPairEntry per entry. Held beside the new list, the old list's
 // table (17 bytes per entry and its offsets) adds 110 bytes per particle.
 TEST(MemoryEstimate, RebuildHoldsTheTouchingContactsOnly) {
   const int side = 12;
@@ -145,7 +154,8 @@ TEST(MemoryEstimate, RebuildHoldsTheTouchingContactsOnly) {
   EXPECT_GE(got.builds, 3);
   ASSERT_EQ(got.contacts_per_particle, 6);
   const double entries = 6, contacts = 6, missing = kEstimatedListEntries - entries;
-  const double expected = m.bytes_per_particle - missing * (4 + 1 + 12) - (m.staging_bytes - contacts * (4 + 12));
+  const double expected = m.bytes_per_particle - missing * (4 + 1 + 12) - (m.staging_bytes - contacts * (4 + 12)) +
+                          entries * kCpuPairEntry;
   EXPECT_GE(got.bytes_per_particle, expected);
   EXPECT_LT(got.bytes_per_particle, expected + m.cell_bytes / double(scene.particles.size()) + 1)
       << "builds " << got.builds << ", held " << got.held_per_particle;

@@ -53,27 +53,7 @@ SceneSpec pairs_scene(const Case& c, bool equal_radii, std::uint64_t seed) {
   scene.effects = c.effects;
   scene.pairs[0].rolling_friction = 0.1;
   scene.pairs[0].cohesion_energy_density = 2e3;
-  // A second, lighter and softer material: unlike pairs take the (m, n) entry
-  // from both sides.
-  MaterialSpec light = scene.materials[0];
-  light.name = "n";
-  light.density = 1500;
-  light.youngs_modulus = 5e6;
-  light.poisson_ratio = 0.25;
-  scene.materials.push_back(light);
-  PairSpec unlike = scene.pairs[0], like = scene.pairs[0];
-  unlike.material_b = 1;
-  unlike.stiffness_normal = 600;
-  unlike.stiffness_tangential = 200;
-  unlike.stiffness_rolling = 150;
-  unlike.restitution = 0.6;
-  unlike.friction = 0.3;
-  like.material_a = like.material_b = 1;
-  like.stiffness_normal = 800;
-  like.restitution = 0.7;
-  like.friction = 0.4;
-  scene.pairs.push_back(unlike);
-  scene.pairs.push_back(like);
+  add_second_material(scene);  // unlike pairs take the (m, n) entry from both sides
   scene.domain_min = {0, 0, 0};
   scene.domain_max = {4 * kSpacing, 4 * kSpacing, 4 * kSpacing};
   scene.periodic_axes = 1u;  // x
@@ -119,8 +99,12 @@ class NewtonThirdLawTest : public testing::TestWithParam<std::tuple<Backend, int
     c.backend = std::get<0>(GetParam());
     return c;
   }
-  // The snapshot after kSteps, its rows by particle id.
+  // The snapshot after kSteps, its rows by particle id. Each sphere computes
+  // its own side of its contact (GRAINSTORM_PAIRS_ONCE=0): the CPU would
+  // otherwise compute the pair once and mirror it (tests/engine/test_pairs_once.cpp
+  // checks that this gives these bits).
   static ParticleSnapshot run(const SceneSpec& scene, Backend backend, std::map<ParticleId, std::size_t>& row) {
+    const ScopedEnv each_side("GRAINSTORM_PAIRS_ONCE", "0");
     Simulation sim(scene, RunOptions{backend});
     sim.run(kSteps);
     ParticleSnapshot s = sim.snapshot();

@@ -65,6 +65,43 @@ Wall plane_wall(Vec3d point, Vec3d normal, int material) {
   return w;
 }
 
+void add_second_material(SceneSpec& scene) {
+  MaterialSpec light = scene.materials[0];
+  light.name = "n";
+  light.density = 1500;
+  light.youngs_modulus = 5e6;
+  light.poisson_ratio = 0.25;
+  scene.materials.push_back(light);
+  PairSpec unlike = scene.pairs[0], like = scene.pairs[0];
+  unlike.material_b = 1;
+  unlike.stiffness_normal = 600;
+  unlike.stiffness_tangential = 200;
+  unlike.stiffness_rolling = 150;
+  unlike.restitution = 0.6;
+  unlike.friction = 0.3;
+  like.material_a = like.material_b = 1;
+  like.stiffness_normal = 800;
+  like.restitution = 0.7;
+  like.friction = 0.4;
+  scene.pairs.push_back(unlike);
+  scene.pairs.push_back(like);
+}
+
+ScopedEnv::ScopedEnv(const char* name, const char* value) : name_(name) {
+  const char* v = std::getenv(name);
+  had_ = v != nullptr;
+  if (had_) old_ = v;
+  set(value);
+}
+ScopedEnv::~ScopedEnv() {
+  if (had_) setenv(name_.c_str(), old_.c_str(), 1);
+  else unsetenv(name_.c_str());
+}
+void ScopedEnv::set(const char* value) const {
+  if (value) setenv(name_.c_str(), value, 1);
+  else unsetenv(name_.c_str());
+}
+
 double kinetic_energy(const ParticleSnapshot& s) {
   double e = 0;
   for (std::size_t i = 0; i < s.size(); ++i)

@@ -18,6 +18,26 @@ SceneSpec base_scene(double density, double stiffness, double restitution, doubl
                      ContactModel model = ContactModel::linear);
 ParticleInit particle(ParticleId id, double radius, Vec3d position, Vec3d velocity = {});
 Wall plane_wall(Vec3d point, Vec3d normal, int material = 0);
+// Adds to base_scene's a second material "n" (lighter, softer) and its pairs
+// n-m and n-n, each with its own stiffnesses, restitution and friction
+// (0.3 and 0.4; m-m keeps base_scene's), so that unlike pairs take the
+// (m, n) entry from either side.
+void add_second_material(SceneSpec& scene);
+
+// Sets an environment variable (a run's setting) for this object's life,
+// then puts back what was there (or unsets it).
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value);
+  ~ScopedEnv();
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+  void set(const char* value) const;
+
+ private:
+  std::string name_, old_;
+  bool had_ = false;
+};
 
 double kinetic_energy(const ParticleSnapshot& s);  // translational + rotational
 double translational_kinetic_energy(const ParticleSnapshot& s);

@@ -21,6 +21,11 @@ struct CpuExec {
   static constexpr bool cell_begins_by_particle = true;
   // Contacts from a Verlet list (neighbor/verlet_list.hpp says why).
   static constexpr bool verlet_list = true;
+  // Each touching pair's law once for both spheres, in a first pass over the
+  // list, then each particle's sums in a second (engine/force_kernel.hpp,
+  // pairs_of): a core evaluates half the laws, for a second pass and 29
+  // bytes per list entry (docs/PERFORMANCE.md, "Each pair once").
+  static constexpr bool pairs_once = true;
 
   // Each thread calls its own copy of the functor: the compiler then knows
   // that no store through the functor's output pointers changes its fields,
@@ -43,6 +48,14 @@ struct CpuExec {
   template <class F>
   static void parallel_for_lanes(Index n, int /*setting*/, const F& f) {
     parallel_for(n, f);
+  }
+
+  // How many of flags[0, n) are not zero (every host thread).
+  static std::size_t count_set(const std::uint8_t* flags, std::size_t n) {
+    std::size_t count = 0;
+#pragma omp parallel for reduction(+ : count) schedule(static) if (n >= std::size_t(kSerialBelow))
+    for (std::size_t k = 0; k < n; ++k) count += flags[k] != 0;
+    return count;
   }
 
   // Writes the indices i in [0, n) with pred(i), ascending, to out; returns

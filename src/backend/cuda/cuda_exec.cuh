@@ -69,6 +69,10 @@ struct CudaExec {
   static constexpr bool cell_begins_by_particle = false;
   // Contacts from a Verlet list (neighbor/verlet_list.hpp says why).
   static constexpr bool verlet_list = true;
+  // Each thread computes its particle's side of every pair (CpuExec::pairs_once):
+  // a second pass and the loads per entry would add memory traffic that has
+  // not been measured against the laws saved.
+  static constexpr bool pairs_once = false;
 
   template <class F>
   static void parallel_for(Index n, const F& f) {
