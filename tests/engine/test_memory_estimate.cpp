@@ -1,6 +1,7 @@
 // estimate_memory (engine/memory_estimate.hpp) against the layout listed by
 // hand, and against the high-water mark of a run's allocations on the CPU
-// backend (whose arrays are the GPU's, less CUB's storage): a persistent
+// backend (whose arrays are the GPU's, less CUB's storage, plus its own for
+// computing each pair once: MemoryEstimate::cpu_pair_bytes): a persistent
 // array the estimate does not know of, or a transient one that stays (sort
 // keys, fp64 list references), shows as bytes per particle it cannot account for.
 #include <gtest/gtest.h>
