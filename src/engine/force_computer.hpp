@@ -184,8 +184,9 @@ class ForceComputer final : public ForceComputation {
     EntryLoads<Real> e;
     GS_HD void operator()(Index i) const { k.sum_entries(i, e); }
   };
-  // Tells the policy how many list entries touch per owned particle.
+  // Tells the policy how many list entries touch per owned particle, where it asks.
   void count_touching(const ParticleStore& s, long long step) {
+    if (!policy_.counts()) return;
     const std::size_t touching = Exec::count_set(entry_touching_.data(), entry_touching_.size());
     policy_.counted(s.n_owned > 0 ? double(touching) / double(s.n_owned) : 0.0, step);
   }

@@ -2,8 +2,8 @@
 // When the CPU computes each touching pair once for both spheres
 // (engine/force_kernel.hpp, pairs_of) rather than each sphere its own side.
 // Once per pair pays where most list entries touch and costs where few do:
-// on one core, a dense bed (4.4 contacts per sphere) stepped 9 % faster, a
-// loosened one (0.7) 11 % slower (docs/PERFORMANCE.md, "Each pair once on
+// on one core, a dense bed (4.4 contacts per sphere) stepped 5-9 % faster,
+// a loosened one (0.7) 11 % slower (docs/PERFORMANCE.md, "Each pair once on
 // the CPU"). Both ways give the same bits, so a run may change between them
 // at any step: it computes each pair once while the touching entries per
 // owned particle, counted at every such step, are at least kFrom, and each
@@ -24,6 +24,9 @@ class PairsOncePolicy {
     if (setting_ != PairsOnceSetting::automatic) return setting_ == PairsOnceSetting::always;
     return once_ || step >= retry_at_;
   }
+  // Whether counted() wants the touching entries (a pass over the list): only
+  // where the choice is automatic.
+  bool counts() const { return setting_ == PairsOnceSetting::automatic; }
   // After a step that computed each pair once: its touching entries per owned particle.
   void counted(double touching_per_particle, long long step) {
     once_ = touching_per_particle >= kFrom;

@@ -151,8 +151,11 @@ TEST(PairsOncePolicy, ChoosesOncePerPairWhereMostEntriesTouch) {
   EXPECT_TRUE(p.choose(1 + 2 * PairsOncePolicy::kRetryEvery));
   p.counted(3 * PairsOncePolicy::kFrom, 1 + 2 * PairsOncePolicy::kRetryEvery);
   EXPECT_TRUE(p.choose(2 + 2 * PairsOncePolicy::kRetryEvery));
-  // Set by hand, the count changes nothing.
+  EXPECT_TRUE(p.counts());
+  // Set by hand, the count changes nothing (and is not asked for).
   PairsOncePolicy always(PairsOnceSetting::always), never(PairsOnceSetting::never);
+  EXPECT_FALSE(always.counts());
+  EXPECT_FALSE(never.counts());
   always.counted(0, 0);
   never.counted(100, 0);
   EXPECT_TRUE(always.choose(1));
