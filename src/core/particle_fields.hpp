@@ -11,7 +11,8 @@
 //   position, velocity, angular velocity: fp64, so a 1e5 m domain keeps
 //     sub-micrometre resolution and long runs do not drift;
 //   radius, mass, moment of inertia: fp32 (material constants of a particle);
-//   orientation quaternion: fp32, renormalised every step (visualisation only);
+//   orientation quaternion: fp32, renormalised every step (visualisation
+//     only: kept and integrated only by runs whose snapshots hold it);
 //   force, torque and the history: the force precision, fp32 or fp64 (the
 //     host holds the history in fp64, exact for fp32).
 #include <cstdint>
@@ -25,6 +26,7 @@ namespace gs {
 struct Quaternion {
   float w, x, y, z;
 };
+constexpr Quaternion kNoRotation{1, 0, 0, 0};
 
 // Fields that only some runs keep (a bit each); a run that does not keep one
 // leaves it empty everywhere (store, records, snapshots, messages,
@@ -33,7 +35,20 @@ enum ParticleField : unsigned {
   kEveryRun = 0u,     // not optional: every run keeps the field
   kImageCounts = 1u,  // periodic runs: crossings of each periodic face (core/periodic_box.hpp)
   kFrozenFlags = 2u,  // runs with frozen particle sets: 1 for a particle that never moves
+  kOrientations = 4u,  // runs whose snapshots hold orientations: nothing else reads them
 };
+
+// The value an optional field starts from where nothing set it (a new
+// particle; a restart from a checkpoint of a run that did not keep the
+// field): no face crossed, not frozen, not rotated.
+template <class T>
+constexpr T start_value() {
+  return T{};
+}
+template <>
+constexpr Quaternion start_value<Quaternion>() {
+  return kNoRotation;
+}
 
 // X(name, type, kept): the state of one particle, in the order messages,
 // records and checkpoints hold it; kept is kEveryRun or the ParticleField bit
@@ -49,7 +64,7 @@ enum ParticleField : unsigned {
   X(position, Vec3d, kEveryRun)            \
   X(velocity, Vec3d, kEveryRun)            \
   X(angular_velocity, Vec3d, kEveryRun)    \
-  X(orientation, Quaternion, kEveryRun)    \
+  X(orientation, Quaternion, kOrientations) \
   X(image, ImageCount, kImageCounts)      \
   X(frozen, std::uint8_t, kFrozenFlags)
 

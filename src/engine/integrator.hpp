@@ -29,7 +29,8 @@ class Integrator final : public Integration {
 
   void kick_drift(ParticleStore& s, const IntegrationParams& p) override {
     ImageCount* image = (s.fields_kept & kImageCounts) != 0 ? s.image.data() : nullptr;
-    const KickDrift<Real> drift{half_kick(s, p), s.position.data(), s.orientation.data(), image,
+    Quaternion* orientation = (s.fields_kept & kOrientations) != 0 ? s.orientation.data() : nullptr;
+    const KickDrift<Real> drift{half_kick(s, p), s.position.data(), orientation, image,
                                 s.id.data(),     p,                  st_.fault.data()};
     const ListWatch watch = neighbours_.watch(s, p.step);
     if (!watch.active()) {

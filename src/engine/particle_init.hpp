@@ -33,8 +33,8 @@ inline void set_particle(ParticleRecords& r, std::size_t k, const ParticleInit& 
   r.position[k] = state(p.position);
   r.velocity[k] = state(p.velocity);
   r.angular_velocity[k] = state(p.angular_velocity);
-  r.orientation[k] = Quaternion{1, 0, 0, 0};
-  if (!r.image.empty()) r.image[k] = ImageCount{};
+  if (!r.orientation.empty()) r.orientation[k] = start_value<Quaternion>();
+  if (!r.image.empty()) r.image[k] = start_value<ImageCount>();
   if (!r.frozen.empty()) r.frozen[k] = p.frozen;
 }
 

@@ -140,11 +140,12 @@ void Simulation::restore(const RestartState& r) {
   auto take_rows = [&](const auto& from, auto& to, std::size_t i) {
     for (std::size_t s = 0; s < slots && !from.empty(); ++s) to.push_back(from[i * slots + s]);
   };
-  // A checkpoint of a run that kept no image counts starts them at zero.
+  // A checkpoint of a run that did not keep an optional field (image
+  // counts, orientations) starts it here, as for a new particle.
   for (Index k : mine) {
     const std::size_t i = std::size_t(k);
     for_each_kept_particle_field(part, r.particles, store_.fields_kept, [i](const char*, auto& to, const auto& from) {
-      to.push_back(from.empty() ? typename std::decay_t<decltype(from)>::value_type{} : from[i]);
+      to.push_back(from.empty() ? start_value<typename std::decay_t<decltype(from)>::value_type>() : from[i]);
     });
     force.push_back(r.force[i]);
     torque.push_back(r.torque[i]);

@@ -91,7 +91,7 @@ template <class Real>
 struct KickDrift {
   HalfKick<Real> kick;
   Vec3d* position;
-  Quaternion* orientation;
+  Quaternion* orientation;  // null unless the run's snapshots hold orientations
   ImageCount* image;  // null unless the run is periodic
   const ParticleId* id;
   IntegrationParams p;
@@ -106,7 +106,7 @@ struct KickDrift {
     x += step;
     if (image) p.box.wrap(x, image[i]);
     if (p.fp32_state) x = on_fp32_grid(x);
-    advance_orientation(orientation[i], kick.angular_velocity[i], p.dt);
+    if (orientation) advance_orientation(orientation[i], kick.angular_velocity[i], p.dt);
     if (!(std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(v.x) &&
           std::isfinite(v.y) && std::isfinite(v.z))) {
       report_fault(fault, kFaultNotFinite, id[i], p.step);

@@ -50,7 +50,9 @@ SnapshotFields default_snapshot_fields() {
 SnapshotFields all_particle_fields() {
   SnapshotFields f;
   for (const SnapshotFieldInfo& info : snapshot_field_table())
-    if (info.field != SnapshotField::contact_count && info.field != SnapshotField::image) f.add(info.field);
+    if (info.field != SnapshotField::contact_count && info.field != SnapshotField::image &&
+        info.field != SnapshotField::orientation)
+      f.add(info.field);
   return f;
 }
 

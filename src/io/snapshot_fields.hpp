@@ -47,8 +47,9 @@ class SnapshotFields {
 // id, material, marker, radius, position, velocity, angular_velocity: what
 // the CSV output holds.
 SnapshotFields default_snapshot_fields();
-// Every field but contact_count (which needs counts from the caller) and
-// image (which only periodic runs keep).
+// Every field but contact_count (which needs counts from the caller), image
+// (which only periodic runs keep) and orientation (kept only by runs whose
+// snapshots name it: core/particle_fields.hpp).
 SnapshotFields all_particle_fields();
 
 // Names to fields; position is added when missing. An unknown name throws

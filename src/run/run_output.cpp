@@ -323,6 +323,7 @@ void RunOutput::fault_snapshot(const Simulation& sim) {
     m.wall_names = scene_.wall_names;
     SnapshotFields fields = all_particle_fields();
     if (particle_fields_kept(scene_) & kImageCounts) fields.add(SnapshotField::image);
+    if (particle_fields_kept(scene_) & kOrientations) fields.add(SnapshotField::orientation);
     if (keeps_history(scene_.model, scene_.effects)) {
       fields.add(SnapshotField::contact_count);
       m.contact_count = s.contacts;

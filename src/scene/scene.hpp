@@ -16,6 +16,7 @@
 #include "core/periodic_box.hpp"
 #include "core/types.hpp"
 #include "core/vec3.hpp"
+#include "io/snapshot_fields.hpp"
 #include "walls/mesh.hpp"
 #include "walls/timeline.hpp"
 #include "walls/wall.hpp"
@@ -98,9 +99,16 @@ struct SceneSettings {
 inline PeriodicBox periodic_box(const SceneSettings& s) {
   return make_periodic_box(s.periodic_axes, s.domain_min, s.domain_max);
 }
+// Whether the run's snapshots hold orientations, which nothing else reads:
+// only then does it keep and integrate them. (Names the loader or the run's
+// output has checked: an unknown one throws, as there.)
+inline bool snapshots_hold_orientations(const OutputSpec& o) {
+  return !o.fields.empty() && parse_snapshot_fields(o.fields).has(SnapshotField::orientation);
+}
 // The optional particle fields a run of the scene keeps (ParticleField bits).
 inline unsigned particle_fields_kept(const SceneSettings& s) {
-  return (s.periodic_axes != 0 ? kImageCounts : 0u) | (s.frozen_particles ? kFrozenFlags : 0u);
+  return (s.periodic_axes != 0 ? kImageCounts : 0u) | (s.frozen_particles ? kFrozenFlags : 0u) |
+         (snapshots_hold_orientations(s.output) ? kOrientations : 0u);
 }
 
 struct SceneSpec : SceneSettings {

@@ -44,7 +44,8 @@ constexpr double kCpuPairEntry = 4 + 24 + 1;
 
 // Per particle, from the declarations: id 4, material and marker 1 each,
 // radius, mass and inertia 4 each, position, velocity and angular velocity
-// 24 each, orientation 16; fp32 force and torque 12 each; 4 surface slots
+// 24 each (no orientation: the scene's snapshots do not hold it); fp32
+// force and torque 12 each; 4 surface slots
 // of a 4-byte partner id and a 12-byte spring, and per list entry a
 // touching flag and a spring (13); Verlet list offsets 4, fp32 reference 12,
 // 12 entries of 4; the cell order 4; staging: at a rebuild the kept
@@ -52,18 +53,21 @@ constexpr double kCpuPairEntry = 4 + 24 + 1;
 // position's 24); beside them the origin rows and the kept offsets, 4 each.
 TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   const MemoryEstimate m = estimate_memory(lattice_scene(2, kFriction));
-  EXPECT_EQ(m.field_bytes, 4 + 1 + 1 + 3 * 4 + 3 * 24 + 16);
+  EXPECT_EQ(m.field_bytes, 4 + 1 + 1 + 3 * 4 + 3 * 24);
   EXPECT_EQ(m.force_bytes, 24);
   EXPECT_EQ(m.history_bytes, 4 * (4 + 12) + 12 * 13);
   EXPECT_EQ(m.list_bytes, 4 + 12 + 12 * 4 + 4);
   EXPECT_EQ(m.staging_bytes, 12 * (4 + 12));
   EXPECT_EQ(m.rebuild_bytes, 4 + 4);
-  EXPECT_EQ(m.bytes_per_particle, 106 + 24 + 220 + 68 + 192 + 8);
+  EXPECT_EQ(m.bytes_per_particle, 90 + 24 + 220 + 68 + 192 + 8);
   EXPECT_EQ(m.cpu_pair_bytes, 12 * kCpuPairEntry);
   const MemoryEstimate none = estimate_memory(lattice_scene(2, 0));
   EXPECT_EQ(none.history_bytes, 0);
   EXPECT_EQ(none.force_bytes, 12);  // no torque without friction
-  EXPECT_EQ(none.bytes_per_particle, 106 + 12 + 68 + 24);
+  EXPECT_EQ(none.bytes_per_particle, 90 + 12 + 68 + 24);
+  SceneSpec with_orientations = lattice_scene(2, kFriction);
+  with_orientations.output.fields = {"position", "orientation"};
+  EXPECT_EQ(estimate_memory(with_orientations).field_bytes, 90 + 16);
 }
 
 // The peak of a CPU run of `scene` over `steps` steps, per particle, what

@@ -77,7 +77,7 @@ TEST(XdmfSeries, MentionsEverySnapshotAndDataset) {
 
 TEST(XdmfSeries, EveryReferenceMatchesTheDatasetInTheFile) {
   ScratchDir dir;
-  write_series(dir, all_particle_fields());
+  write_series(dir, all_particle_fields().add(SnapshotField::orientation));
   const std::string xmf = read_text(dir.file("particles.xdmf"));
   const std::regex item(R"re(<DataItem Dimensions="([0-9 ]+)" NumberType="(\w+)" Precision="(\d)" Format="HDF">([^:<]+):/([^<]+)</DataItem>)re");
   int checked = 0;
