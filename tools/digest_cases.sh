@@ -3,11 +3,12 @@
 # line per scene and rank count, "scene ranks steps digest". Two builds that
 # print the same lines compute the same bits (a refactor must not change them).
 #
-#   [DIGEST_BUILD=DIR] [BACKEND=cpu] [SCENES=regex] tools/digest_cases.sh BUILD_DIR [MAX_RANKS=4] [STEPS=200] > digests.txt
+#   [DIGEST_BUILD=DIR] [BACKEND=cpu] [SCENES=regex] [DECOMPOSITION=metis] tools/digest_cases.sh BUILD_DIR [MAX_RANKS=4] [STEPS=200] > digests.txt
 #
 # BACKEND=cuda runs every rank on the one GPU (ranks sharing a GPU move their
 # messages through host buffers); SCENES keeps the scenes whose paths match
-# the extended regular expression.
+# the extended regular expression. DECOMPOSITION=slabs|metis sets every
+# scene's decomposition method (default: the scene's own).
 # DIGEST_BUILD: the build whose `grainstorm info` digests the checkpoints
 # (default BUILD_DIR): the runs of one build digested as another computes
 # digests, when the digest itself changed between them.
@@ -34,11 +35,13 @@ for scene in $scenes; do
   copy="$root/$(dirname "$scene")/.digest_$(basename "$scene")"
   for ranks in $(seq 1 "$max_ranks"); do
     out="$work/$(echo "$scene" | tr / _)_$ranks"
-    "$python" - "$root/$scene" "$copy" "$out" <<'PY'
+    "$python" - "$root/$scene" "$copy" "$out" "${DECOMPOSITION:-}" <<'PY'
 import sys, yaml
-scene, copy, out = sys.argv[1:]
+scene, copy, out, method = sys.argv[1:]
 s = yaml.safe_load(open(scene))
 s["output"] = {"interval": 1e9, "directory": out, "format": "csv", "checkpoint_interval": 1e9}
+if method:
+    s.setdefault("decomposition", {})["method"] = method
 analysis = s.get("analysis", {}).get("mixing")
 if analysis is not None:
     analysis["output"] = "mixing.csv"
