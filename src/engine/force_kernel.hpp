@@ -379,9 +379,12 @@ struct ForceKernel {
   }
 
   // The pair (i, j) of i's list entry k and j's entry r (which names i),
-  // for both spheres: the law once, j's load and springs mirrored.
-  GS_HD void pair_once(Index i, Index j, ListOffset k, ListOffset r, const Vec3d& xi,
-                       const EntryLoads<Real>& e) const {
+  // for both spheres: the law once, j's load and springs mirrored. Inlined
+  // into pairs_of: as a call (GCC's choice for a function this long) the
+  // CPU's dense bed stepped 4-9 % slower (docs/PERFORMANCE.md, "Orientation
+  // only where the snapshots hold it, and two calls inlined").
+  GS_HD GS_INLINE void pair_once(Index i, Index j, ListOffset k, ListOffset r, const Vec3d& xi,
+                                 const EntryLoads<Real>& e) const {
     ContactKinematics<Real> c;
     if (!particle_kinematics(i, j, xi, c)) {
       e.touching[k] = e.touching[r] = 0;

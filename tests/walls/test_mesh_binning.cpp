@@ -228,7 +228,9 @@ TEST(MeshBinning, SizeBoundsTheBinning) {
         const double entries = double(bins.cell_begin[bins.first_cell[m + 1]] - bins.cell_begin[bins.first_cell[m]]);
         EXPECT_EQ(size.cells[std::size_t(m)], cells) << "h " << h << " mesh " << m;
         EXPECT_GE(size.entries[std::size_t(m)], entries) << "h " << h << " mesh " << m << " prune " << prune;
-        if (prune && h < 0.001) EXPECT_LT(size.entries[std::size_t(m)], 4 * entries) << "h " << h << " mesh " << m;
+        if (prune && h < 0.001) {
+          EXPECT_LT(size.entries[std::size_t(m)], 4 * entries) << "h " << h << " mesh " << m;
+        }
       }
       EXPECT_DOUBLE_EQ(size.bytes(), 4 * (size.total_cells() + 1 + size.total_entries()));
     }
