@@ -322,8 +322,9 @@ void RunOutput::fault_snapshot(const Simulation& sim) {
     m.scene_path = scene_.path;
     m.wall_names = scene_.wall_names;
     SnapshotFields fields = all_particle_fields();
-    if (particle_fields_kept(scene_) & kImageCounts) fields.add(SnapshotField::image);
-    if (particle_fields_kept(scene_) & kOrientations) fields.add(SnapshotField::orientation);
+    const unsigned kept = particle_fields_kept(scene_);  // the optional ones
+    if (kept & kImageCounts) fields.add(SnapshotField::image);
+    if (kept & kOrientations) fields.add(SnapshotField::orientation);
     if (keeps_history(scene_.model, scene_.effects)) {
       fields.add(SnapshotField::contact_count);
       m.contact_count = s.contacts;

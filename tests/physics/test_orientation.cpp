@@ -10,10 +10,11 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <vector>
 
-#include "scene/scene_time_step.hpp"
 #include "io/checkpoint.hpp"
 #include "io/restart.hpp"
+#include "scene/scene_time_step.hpp"
 #include "support/support.hpp"
 
 namespace gs::test {
