@@ -47,7 +47,7 @@ units = rows[0] if rows and not rows[0]["ID"] else {}
 launches = [r for r in rows if r["ID"]]
 if not launches:
     sys.exit("force_roofline: no ForceKernel launch in ncu's output")
-scale = {"byte": 1, "Kbyte": 1e3, "Mbyte": 1e6, "Gbyte": 1e9, "nsecond": 1e-9, "usecond": 1e-6,
+scale = {"byte": 1, "Kbyte": 1e3, "Mbyte": 1e6, "Gbyte": 1e9, "nsecond": 1e-9, "usecond": 1e-6, "ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1,
          "msecond": 1e-3, "second": 1, "%": 1, "": 1}
 
 # Without a units row, ncu's base units: bytes, nanoseconds, percent.

@@ -51,6 +51,11 @@ VESSEL_RADIUS = 0.05      # Table 1: DS = 100 mm
 SHAFT_TOP = 0.100         # impeller.stl: shaft top 100 mm above the hub's bottom face
 FLOOR = -0.002            # vessel floor, 2 mm below the impeller (the paper does not say)
 FILL_RADIUS = 0.047       # the creation cylinder, clear of the vessel wall
+# The vessel is closed by a lid just above the fill (the paper does not say):
+# the blade tips pass 2.5 mm from the wall, less than case a's diameter, and a
+# sphere squeezed there at Table 4's stiffness can be thrown out of an open
+# vessel (docs/MIXER.md, "Spheres thrown out of the vessel"). The lid keeps
+# every sphere in the run and the tracer's share fixed.
 CREATION_PACKING = 0.25   # solid fraction of the random fill the particles fall from
 BED_PACKING = 0.60        # solid fraction of the settled bed (for the sample height)
 # Just below the stable limit of Table 4's springs (k_t/k_n = 0.79, e = 0.78):
@@ -136,7 +141,7 @@ pairs:
   - {{materials: [glass, steel], stiffness_normal: {kn:.6g}, stiffness_tangential: {kt:.6g}, restitution: 0.78, friction: 0.2}}
 
 walls:
-  - cylinder: {{base: [0, 0, {s * FLOOR:g}], axis: [0, 0, 1], radius: {s * VESSEL_RADIUS:g}, length: {top - s * FLOOR:.4f}, caps: bottom}}
+  - cylinder: {{base: [0, 0, {s * FLOOR:g}], axis: [0, 0, 1], radius: {s * VESSEL_RADIUS:g}, length: {top - s * FLOOR:.4f}, caps: both}}
     material: steel
     name: vessel
   - mesh: {{stl: impeller.stl{"" if s == 1 else f", scale: {s:.6g}"}}}

@@ -94,6 +94,26 @@ class Scenes(unittest.TestCase):
                 if deep:  # the comment's figure, to the percent
                     self.assertAlmostEqual(number(scene, r"about ([0-9]+) % of a diameter deep"), 100 * impact, delta=1.5)
 
+    def test_the_vessel_is_closed_above_the_fill(self):
+        # A sphere squeezed between a blade tip and the wall can be thrown
+        # out of an open vessel (docs/MIXER.md, "Spheres thrown out of the
+        # vessel"): a lid at the vessel's top, inside the domain and above
+        # the fill the spheres start from.
+        with tempfile.TemporaryDirectory() as out:
+            write(out, "--cases", "abcd")
+            write(out, "--cases", "ab", "--froude-scaled", "--suffix", "_scaled")
+            for name in ("a", "b", "c", "d", "a_scaled", "b_scaled"):
+                scene = read(os.path.join(out, f"case_{name}.yaml"))
+                vessel = re.search(r"cylinder: \{base: \[0, 0, ([0-9.e-]+)\], axis: \[0, 0, 1\], radius: [0-9.e-]+, "
+                                   r"length: ([0-9.e-]+), caps: (\w+)\}", scene)
+                self.assertIsNotNone(vessel, name)
+                self.assertEqual(vessel.group(3), "both", name)
+                lid = float(vessel.group(1)) + float(vessel.group(2))
+                fill = re.search(r"region: \{cylinder: \{base: \[0, 0, ([0-9.e-]+)\], .*length: ([0-9.e-]+)\}", scene)
+                r = number(scene, r"radius: ([0-9.e-]+)\n")
+                self.assertGreater(lid, float(fill.group(1)) + float(fill.group(2)) + r, name)
+                self.assertLessEqual(lid, number(scene, r"max: \[[^]]*, ([0-9.e-]+)\]\}"), name)
+
     @unittest.skipUnless(GRAINSTORM, "no grainstorm binary given")
     def test_grainstorm_accepts_the_scaled_model(self):
         with tempfile.TemporaryDirectory() as out:
