@@ -47,7 +47,8 @@ struct Options {
   bool mesh = false;  // the seed's impeller turning at 30 rpm in the bed
   bool digest = false;  // print the final state's digest (io/state_digest.hpp) after the timing
   bool contacts = true;  // count the contacts per particle at the end (a host snapshot)
-  gs::RunOptions run{gs::default_backend()};  // backend and Verlet skin
+  double skin = gs::SceneSpec{}.verlet_skin;  // Verlet list skin, largest diameters
+  gs::RunOptions run{gs::default_backend()};  // backend
 };
 
 gs::Precision parse_precision(const std::string& s) {
@@ -79,7 +80,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--mesh") o.mesh = v == "impeller";
     else if (a == "--digest") o.digest = v == "yes";
     else if (a == "--contacts") o.contacts = v != "no";
-    else if (a == "--skin") o.run.verlet_skin = std::stod(v);
+    else if (a == "--skin") o.skin = std::stod(v);
     else throw std::invalid_argument("unknown option " + a);
   }
   return o;
@@ -147,6 +148,7 @@ gs::SceneSpec bed_scene(const Options& o) {
   s.contact_time = gs::critical_contact_time(s);
   s.time_step = 0.2 * s.contact_time;
   s.duration = s.time_step * double(o.steps);
+  s.verlet_skin = o.skin;
   return s;
 }
 

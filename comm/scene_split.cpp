@@ -1,6 +1,7 @@
 #include "comm/scene_split.hpp"
 
 #include <functional>
+#include <utility>
 
 #include "decomposition/metis_decomposition.hpp"
 #include "decomposition/slab_decomposition.hpp"
@@ -47,32 +48,32 @@ std::unique_ptr<Decomposition> decompose(const SceneSpec& scene, Transport& tran
   return std::make_unique<SlabDecomposition>(SlabDecomposition::from_histograms(grid, ranks, spec.axis, layers));
 }
 
-std::shared_ptr<DomainExchange> split(const SceneSpec& scene, Transport& transport, const PositionBlocks& blocks,
-                                      double skin) {
-  // Ghosts reach one largest diameter, the widest contact, plus the skin
-  // (Simulation sets it): coarse cells at least that wide keep every rank
-  // within a ghost's reach among the decomposition's neighbours.
+std::shared_ptr<DomainExchange> split(const SceneSpec& scene, Transport& transport, const PositionBlocks& blocks) {
+  // Ghosts reach one largest diameter, the widest contact, plus the scene's
+  // skin (Simulation sets it on the exchange): coarse cells at least that
+  // wide keep every rank within a ghost's reach among the decomposition's
+  // neighbours.
   const double range = 2 * largest_radius(scene);
-  return std::make_shared<DomainExchange>(transport, decompose(scene, transport, range * (1 + skin), blocks), range,
-                                          scene.decomposition, periodic_box(scene));
+  std::unique_ptr<Decomposition> d = decompose(scene, transport, range * (1 + scene.verlet_skin), blocks);
+  return std::make_shared<DomainExchange>(transport, std::move(d), range, scene.decomposition, periodic_box(scene));
 }
 
 }  // namespace
 
-std::shared_ptr<DomainExchange> split_scene(const SceneSpec& scene, Transport& transport, double skin) {
+std::shared_ptr<DomainExchange> split_scene(const SceneSpec& scene, Transport& transport) {
   const std::size_t n = particle_count(scene), k = std::size_t(transport.rank()), ranks = std::size_t(transport.size());
   // n * k overflows only beyond 2^64 / 2^32 ranks: ids are 32-bit.
   const std::size_t first = n * k / ranks, last = n * (k + 1) / ranks;
   const PositionBlocks mine = [&](const std::function<void(const std::vector<Vec3d>&)>& use) {
     for_each_position_block(scene, first, last, use);
   };
-  return split(scene, transport, mine, skin);
+  return split(scene, transport, mine);
 }
 
 std::shared_ptr<DomainExchange> split_restart(const SceneSpec& scene, Transport& transport,
-                                              const std::vector<Vec3d>& share, double skin) {
+                                              const std::vector<Vec3d>& share) {
   const PositionBlocks mine = [&](const std::function<void(const std::vector<Vec3d>&)>& use) { use(share); };
-  return split(scene, transport, mine, skin);
+  return split(scene, transport, mine);
 }
 
 }  // namespace gs

@@ -7,7 +7,6 @@
 
 #include "comm/domain_exchange.hpp"
 #include "comm/transport.hpp"
-#include "engine/simulation.hpp"
 #include "scene/scene.hpp"
 
 namespace gs {
@@ -16,13 +15,12 @@ namespace gs {
 // (an even split of the id sequence) into the coarse histograms, which are
 // summed over the ranks. Counts are integers, so the sum, and the
 // decomposition, are those of all positions on one rank. Collective.
-std::shared_ptr<DomainExchange> split_scene(const SceneSpec& scene, Transport& transport,
-                                            double skin = RunOptions{}.verlet_skin);
+std::shared_ptr<DomainExchange> split_scene(const SceneSpec& scene, Transport& transport);
 
 // A restart: each rank holds its share of the checkpoint's positions (any
 // split of them over the ranks); the counts are summed as for a new run.
 // Collective.
 std::shared_ptr<DomainExchange> split_restart(const SceneSpec& scene, Transport& transport,
-                                              const std::vector<Vec3d>& share, double skin = RunOptions{}.verlet_skin);
+                                              const std::vector<Vec3d>& share);
 
 }  // namespace gs

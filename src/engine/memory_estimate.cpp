@@ -22,6 +22,7 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   m.force_bytes = 3 * real;                                   // force
   if (makes_torques(scene.effects)) m.force_bytes += 3 * real;  // torque
   const unsigned fields_kept = history_fields_kept(scene.model, scene.effects);
+  const double entries = estimated_list_entries(scene.verlet_skin);
   double kept = 0;  // the kept contacts at a rebuild, per particle
   if (fields_kept != 0) {
     double springs = 0;  // one contact's history fields
@@ -33,17 +34,17 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
     // Surface slots of a partner id and the springs; a touching flag and the
     // springs per list entry (engine/pair_history.hpp).
     const double entry = sizeof(std::uint8_t) + springs;
-    m.history_bytes = (sizeof(ParticleId) + springs) * scene.surface_slots + entry * kEstimatedListEntries;
+    m.history_bytes = (sizeof(ParticleId) + springs) * scene.surface_slots + entry * entries;
     // At a rebuild, each particle's touching contacts (a partner id and the
-    // springs; here every entry touches) wait in the staging buffer for the
-    // new list (engine/pair_keep.hpp), beside the old list with each
-    // particle's origin row and the kept table's offsets.
+    // springs; at most twelve touch in a close-packed bed) wait in the
+    // staging buffer for the new list (engine/pair_keep.hpp), beside the old
+    // list with each particle's origin row and the kept table's offsets.
     kept = (sizeof(ParticleId) + springs) * kEstimatedListEntries;
     m.rebuild_bytes = sizeof(Index) + sizeof(ListOffset);
   }
   // Verlet list: offsets, fp32 reference positions, entries; the cell
   // list's order of the particles (neighbor/verlet_list.hpp, cell_list.hpp).
-  m.list_bytes = sizeof(Index) + sizeof(Vec3f) + sizeof(Index) * kEstimatedListEntries + sizeof(Index);
+  m.list_bytes = sizeof(Index) + sizeof(Vec3f) + sizeof(Index) * entries + sizeof(Index);
   // The staging buffer at its largest: a gather of the widest field (a
   // position) when memory is re-sorted, the sort's keys and second buffers
   // while the cell list is built, or the kept contacts at a rebuild
@@ -51,7 +52,7 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   m.staging_bytes = std::max({double(sizeof(Vec3d)), double(2 * sizeof(std::uint64_t) + sizeof(Index)), kept});
   m.bytes_per_particle =
       m.field_bytes + m.force_bytes + m.history_bytes + m.list_bytes + m.staging_bytes + m.rebuild_bytes;
-  m.cpu_pair_bytes = (sizeof(ListOffset) + 6 * real + sizeof(std::uint8_t)) * kEstimatedListEntries;
+  m.cpu_pair_bytes = (sizeof(ListOffset) + 6 * real + sizeof(std::uint8_t)) * entries;
   const double r = largest_radius(scene);
   if (r > 0) {
     const CellGrid g = make_cell_grid(scene.domain_min, scene.domain_max, 2 * r, periodic_box(scene));

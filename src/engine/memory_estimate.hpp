@@ -1,4 +1,6 @@
 #pragma once
+#include <algorithm>
+
 #include "scene/scene.hpp"
 
 namespace gs {
@@ -7,6 +9,13 @@ namespace gs {
 // neighbours of a sphere in a close-packed bed of equal spheres, all within
 // the default skin (a simple-cubic bed has six, a random dense one 7-10).
 constexpr double kEstimatedListEntries = 12;
+// At a wider skin (scene key verlet_skin) a list covers more: the entries
+// grow as the volume it reaches, the cube of (1 + skin) diameters (an
+// upper bound for a close-packed bed: 54 within two diameters, 72 here).
+inline double estimated_list_entries(double skin) {
+  const double reach = (1 + std::max(skin, SceneSettings{}.verlet_skin)) / (1 + SceneSettings{}.verlet_skin);
+  return kEstimatedListEntries * reach * reach * reach;
+}
 
 struct MemoryEstimate {
   double bytes_per_particle = 0;  // the sum of the parts below
@@ -30,7 +39,7 @@ struct MemoryEstimate {
 
 // What a run of this scene holds in device memory at its peak, by the layout
 // of ParticleStore, the force arrays, the contact history, the Verlet and
-// cell lists (kEstimatedListEntries entries per particle, all touching), the
+// cell lists (estimated_list_entries per particle, at most twelve touching), the
 // staging buffer that also holds the sort's buffers and, at a list rebuild,
 // the pair history's kept contacts (engine/pair_keep.hpp), and the meshes
 // with their binning, at the smallest cells a run uses (one largest

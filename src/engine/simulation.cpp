@@ -84,21 +84,21 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
 void Simulation::set_up(const SceneSpec& scene) {
   if (const std::string problem = fp32_state_problem(scene); !problem.empty()) throw std::invalid_argument(problem);
   // A negative skin would make cells narrower than a contact's reach.
-  if (!(options_.verlet_skin >= 0) || !std::isfinite(options_.verlet_skin))
+  if (!(scene.verlet_skin >= 0) || !std::isfinite(scene.verlet_skin))
     throw std::invalid_argument("Verlet skin must be a finite number >= 0 (in largest diameters), got " +
-                                std::to_string(options_.verlet_skin));
+                                std::to_string(scene.verlet_skin));
   const Backend b = options_.backend;
   store_.place_on(b);
   store_.fields_kept = particle_fields_kept(scene);
   kernels_ = make_step_kernels({b, scene.precision, scene.model, scene.effects},
                                {scene.materials, scene.pairs, scene.contact_slots, scene.surface_slots});
   const double diameter = 2.0 * largest_radius(scene);
-  skin_ = kernels_->neighbours().uses_verlet_list() ? options_.verlet_skin * diameter : 0.0;
+  skin_ = kernels_->neighbours().uses_verlet_list() ? scene.verlet_skin * diameter : 0.0;
   kernels_->neighbours().watch_moves(!exchange_);
   grid_ = make_cell_grid(scene.domain_min, scene.domain_max, diameter + skin_, periodic_box(scene));
   // The halo's skin, with or without a Verlet list: ghosts then need
   // selecting only when a particle has moved half of it.
-  if (exchange_) exchange_->set_skin(options_.verlet_skin * diameter);
+  if (exchange_) exchange_->set_skin(scene.verlet_skin * diameter);
   walls_ = scene.walls;
   removes_ = scene.has_exits();
   if (removes_)

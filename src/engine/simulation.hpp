@@ -28,7 +28,6 @@ struct SimulationFault : std::runtime_error {
 struct RunOptions {
   Backend backend = Backend::cpu;
   int reorder_interval = 25;     // steps between re-sorting particle memory by cell
-  double verlet_skin = 0.1;      // Verlet list and halo skin, in largest particle diameters
   int fault_check_interval = 50; // steps between reading the fault flag
   int rebalance_interval = 500;  // steps between load-balance checks (several ranks)
 };

@@ -81,6 +81,7 @@ struct SceneSettings {
   OutputSpec output;
   int contact_slots = 12;            // contacts a particle may have (its row in checkpoints and messages)
   int surface_slots = 4;             // of them, with walls and mesh features at once (history slots)
+  double verlet_skin = 0.1;          // Verlet list and halo skin, in largest particle diameters
   DecompositionSpec decomposition;
   std::optional<MixingSpec> mixing;  // analysis.mixing (docs/MIXING.md); none: no mixing analysis
   std::optional<MarkingSpec> marking;  // none: markers stay as created

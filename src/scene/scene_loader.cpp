@@ -24,7 +24,16 @@ const std::vector<std::string> kTopKeys = {"domain",    "gravity", "contact_mode
                                            "materials", "pairs",   "particles",     "walls",         "time_step",
                                            "duration",  "output",  "contact_slots", "decomposition",
                                            "analysis",  "marking", "outlets",       "inlets",
-                                           "measurements", "surface_slots"};
+                                           "measurements", "surface_slots", "verlet_skin"};
+
+// In largest diameters: 0 rebuilds the list at every step; beyond one
+// diameter the list (and the halo) would hold more than eight times the
+// neighbours a contact needs, which no flow repays.
+double verlet_skin(const Val& v) {
+  const double x = nonnegative(v);
+  if (x > 1) fail(v, "must be at most 1 (largest diameters), got " + str(x));
+  return x;
+}
 
 void parse_decomposition(const Map& m, SceneSpec& s) {
   DecompositionSpec& d = s.decomposition;
@@ -90,6 +99,7 @@ void parse_globals(const Map& top, SceneSpec& s) {
   }
   if (top.has("contact_slots")) s.contact_slots = int(integer(top.get("contact_slots"), 1, kMaxContactSlots));
   if (top.has("surface_slots")) s.surface_slots = int(integer(top.get("surface_slots"), 1, kMaxContactSlots));
+  if (top.has("verlet_skin")) s.verlet_skin = verlet_skin(top.get("verlet_skin"));
   if (top.has("decomposition")) parse_decomposition(Map(top.get("decomposition"), {"method", "axis", "rebalance_threshold"}), s);
 }
 

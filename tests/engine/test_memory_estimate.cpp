@@ -166,6 +166,22 @@ TEST(MemoryEstimate, RebuildHoldsTheTouchingContactsOnly) {
       << "builds " << got.builds << ", held " << got.held_per_particle;
 }
 
+// A wider skin lists more neighbours: at half a diameter a sphere of the
+// gapped lattice (side 12) lists its edge neighbours too (2.83 mm away,
+// within 3 mm), 15.6 entries on average instead of 5.5, each 4 bytes in the
+// list, 13 of pair history and kCpuPairEntry of the CPU's own. The
+// estimate, which grows its entries with the cube of (1 + skin), grows at
+// least as much as the run's peak (at a fixed 12 entries it would not grow).
+TEST(MemoryEstimate, AWiderSkinIsCounted) {
+  const SceneSpec narrow = lattice_scene(12, kFriction);
+  SceneSpec wide = narrow;
+  wide.verlet_skin = 0.5;
+  const double grown = measure(wide, 5).bytes_per_particle - measure(narrow, 5).bytes_per_particle;
+  EXPECT_NEAR(grown, (15.6 - 5.5) * (4 + 13 + kCpuPairEntry), 20);
+  const MemoryEstimate a = estimate_memory(narrow), b = estimate_memory(wide);
+  EXPECT_GE(b.bytes_per_particle + b.cpu_pair_bytes - a.bytes_per_particle - a.cpu_pair_bytes, grown);
+}
+
 // At a snapshot or checkpoint the particles touching a wall are selected with
 // their history (ParticleMover::wall_contact_history): the output then holds,
 // beside the run, their indices and one field of their history at a time

@@ -76,7 +76,7 @@ TEST(HaloSchedule, RanksRebuildWhenAParticleHasMovedHalfTheSkin) {
   RunOptions o;
   o.rebalance_interval = 0;  // a load-balance check would rebuild as well
   const long long steps = 1500;
-  const double skin = o.verlet_skin * 2 * largest_radius(s);
+  const double skin = s.verlet_skin * 2 * largest_radius(s);
   Simulation one(s, o);
   std::vector<Vec3d> reference = one.snapshot().position;
   long long expected = 0;
@@ -155,8 +155,8 @@ void expect_contacts_across_boundaries(const RunOptions& o) {
   s.domain_max = {0.08, 0.01, 0.04};
   s.decomposition.axis = 2;
   s.time_step = 1e-5;
-  const double r = 0.001, d = 2 * r, skin = RunOptions{}.verlet_skin * d, v = 0.1;
-  const CoarseGrid g = CoarseGrid::make(s.domain_min, s.domain_max, d * (1 + RunOptions{}.verlet_skin));
+  const double r = 0.001, d = 2 * r, skin = s.verlet_skin * d, v = 0.1;
+  const CoarseGrid g = CoarseGrid::make(s.domain_min, s.domain_max, d * (1 + s.verlet_skin));
   for (int k = 2; k < g.dims[2]; ++k) {
     const double face = g.face(2, k), x = 0.002 + 0.004 * (k - 2);
     s.particles.push_back(particle(ParticleId(s.particles.size()), r, {x, 0.005, face + 0.1 * skin}, {0, 0, -v}));

@@ -198,6 +198,14 @@ TEST(RankIndependence, PolydisperseFrictionalSettlingWithMetis) {
   expect_rank_independent(settling_scene(DecompositionMethod::metis), 1500);
 }
 
+// The scene's skin sets the list's, the halo's and the decomposition's
+// reach alike (comm/scene_split.cpp): half a diameter, five times the default.
+TEST(RankIndependence, PolydisperseFrictionalSettlingWithAWideSkin) {
+  SceneSpec s = settling_scene(DecompositionMethod::slabs);
+  s.verlet_skin = 0.5;
+  expect_rank_independent(s, 1500);
+}
+
 // A random fill kept as its source, cut into two blocks along x: each rank
 // makes only the blocks that meet its slab (a window at setup; on 3 and 4
 // ranks the outer slabs meet one block each), and the particles, and the

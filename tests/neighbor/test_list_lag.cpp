@@ -64,7 +64,7 @@ TEST_P(ListLagRun, RebuildsWhereTheLaggedRuleSays) {
   scene.gravity = {0, 0, 0};
   scene.time_step = 1e-5;
   RunOptions options{GetParam()};
-  const double skin = options.verlet_skin * 2 * kRadius;
+  const double skin = scene.verlet_skin * 2 * kRadius;
   const double speed = skin / 37 / scene.time_step;
   scene.particles.push_back(particle(0, kRadius, {-0.015, 0, 0}, {speed, 0, 0}));
   Simulation sim(scene, options);
@@ -84,7 +84,7 @@ TEST_P(ListLagRun, FastSphereRebuildsEveryStep) {
   scene.gravity = {0, 0, 0};
   scene.time_step = 1e-5;
   RunOptions options{GetParam()};
-  const double skin = options.verlet_skin * 2 * kRadius;
+  const double skin = scene.verlet_skin * 2 * kRadius;
   scene.particles.push_back(particle(0, kRadius, {-0.015, 0, 0}, {0.45 * skin / scene.time_step, 0, 0}));
   Simulation sim(scene, options);
   sim.run(1);
@@ -119,7 +119,7 @@ TEST_P(ListLagRun, ListOutrunInAKeptStepIsAFault) {
   const SceneSpec scene = struck_sphere(12500);
   const double mass = 2500 * 4.0 / 3.0 * M_PI * std::pow(kRadius, 3);
   const double jolt = 12500 * 25e-6 / mass * scene.time_step * scene.time_step;
-  const double skin = RunOptions{}.verlet_skin * 2 * kRadius;
+  const double skin = scene.verlet_skin * 2 * kRadius;
   ASSERT_GT(jolt, 1.4 * skin);
   ASSERT_LT(jolt, 0.5 * kRadius);  // far less than half a cell: no other fault
   // Stopped at step 20, or at step 12 itself: the last step's verdict is

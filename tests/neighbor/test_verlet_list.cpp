@@ -139,9 +139,9 @@ class VerletListRun : public testing::TestWithParam<Backend> {};
 // show as its whole force.
 TEST_P(VerletListRun, ForcesMatchBruteForceAfterManyRebuilds) {
   const double box = 0.0132;
-  const SceneSpec scene = gas_scene(box, 216);
+  SceneSpec scene = gas_scene(box, 216);
+  scene.verlet_skin = 0.02;  // rebuilt every few steps
   RunOptions options{GetParam()};
-  options.verlet_skin = 0.02;  // rebuilt every few steps
   Simulation sim(scene, options);
   sim.run(3000);
   const ParticleSnapshot s = sim.snapshot();
@@ -169,10 +169,10 @@ TEST_P(VerletListRun, ForcesMatchBruteForceAfterManyRebuilds) {
 }
 
 TEST_P(VerletListRun, NegativeOrNonFiniteSkinIsRefused) {
-  const SceneSpec scene = gas_scene(0.0132, 8);
+  SceneSpec scene = gas_scene(0.0132, 8);
   for (double skin : {-0.01, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    scene.verlet_skin = skin;
     RunOptions options{GetParam()};
-    options.verlet_skin = skin;
     try {
       Simulation sim(scene, options);
       ADD_FAILURE() << "skin " << skin << " was accepted";
@@ -215,11 +215,11 @@ SceneSpec packed_scene() {
 // skin and any memory re-sorting schedule, on either backend. (A list left
 // in cell order fails this: the skins make different grids.)
 TEST_P(VerletListRun, ResultDoesNotDependOnTheRebuildSchedule) {
-  const SceneSpec scene = packed_scene();
+  SceneSpec scene = packed_scene();
   std::vector<ParticleSnapshot> results;
   for (const auto& [skin, reorder] : {std::pair{0.02, 25}, std::pair{0.5, 7}, std::pair{0.1, 0}}) {
+    scene.verlet_skin = skin;
     RunOptions options{GetParam()};
-    options.verlet_skin = skin;
     options.reorder_interval = reorder;
     Simulation sim(scene, options);
     sim.run(2000);

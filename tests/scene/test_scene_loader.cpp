@@ -89,6 +89,8 @@ TEST(SceneLoader, GoodSceneParses) {
   EXPECT_EQ(s.output.directory, "res");
   EXPECT_EQ(s.contact_slots, 12);
   EXPECT_EQ(s.surface_slots, 4);
+  EXPECT_EQ(s.verlet_skin, 0.1);
+  EXPECT_EQ(parse_scene(edit("effects:", "verlet_skin: 0.3\neffects:"), "s").verlet_skin, 0.3);
 }
 
 TEST(SceneLoader, BoxExpandsToSixInwardPlanes) {
@@ -319,6 +321,8 @@ TEST(SceneLoaderErrors, SetShapeAndChoices) {
   expect_error(edit("effects:", "contact_model: hooke\neffects:"), 3, "contact_model", "linear, hertz_mindlin");
   expect_error(edit("effects:", "contact_slots: 33\neffects:"), 3, "contact_slots", "[1, 32]");
   expect_error(edit("effects:", "surface_slots: 0\neffects:"), 3, "surface_slots", "[1, 32]");
+  expect_error(edit("effects:", "verlet_skin: -0.1\neffects:"), 3, "verlet_skin", ">= 0");
+  expect_error(edit("effects:", "verlet_skin: 1.5\neffects:"), 3, "verlet_skin", "at most 1");
   expect_error(edit("effects:", "contact_model: hertz_mindlin\neffects:"), 6, "materials[0]", "'youngs_modulus'");
   expect_error(edit("spacing: 0.003", "spacing: 0.0019"), 14, "particles[0].lattice.spacing", "overlap");
   expect_error(edit("gravity: [0, 0, -9.81]", "gravity: [0, 0, -9.81]\ngravity: [0, 0, 0]"), 3, "gravity", "twice");
