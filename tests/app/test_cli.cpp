@@ -198,6 +198,7 @@ TEST_F(CliTest, CheckDemoScene) {
   const CliResult r = run_cli("check '" GS_SOURCE_DIR "/cases/demo/settle.yaml'");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("is valid"), std::string::npos);
+  EXPECT_NE(r.out.find("verlet skin:    0.1 largest diameters"), std::string::npos) << r.out;
   EXPECT_TRUE(work_entries().empty());  // check writes nothing
 }
 
