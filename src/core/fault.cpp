@@ -5,7 +5,9 @@ namespace gs {
 const char* fault_cause(int code) {
   switch (code) {
     case kFaultNone: return "no fault";
-    case kFaultLeftDomain: return "the particle left the domain";
+    case kFaultLeftDomain: return "the particle left the domain through a closed face (make the domain enclose "
+                                  "everywhere particles can go, keep them in with a wall, or let them leave: "
+                                  "domain.open or an outlet)";
     case kFaultTooFast: return "the particle moved more than half a cell in one step (time step too large or "
                                "unstable contact)";
     case kFaultNotFinite: return "position or velocity became NaN or Inf (numerical instability)";
