@@ -21,7 +21,8 @@
 # of the step it stops at and exits with code 3.
 #
 # OUT receives the campaign in the same layout (scenes, impeller.stl, per run
-# the newest checkpoint unless it has finished, the logs; no snapshots except,
+# the newest checkpoint unless it has finished, the logs, the fault snapshot
+# of a run whose last piece failed if at most 16 MiB; no snapshots except,
 # for the runs whose names match the glob KEEP_RUNS, those nearest the
 # revolutions of KEEP_REVOLUTIONS, for top views), packed as
 # campaign.tar.gz.partNN of at most 15 MiB (a job system may return at most 8
@@ -126,6 +127,13 @@ for scene in $scenes; do
   if [[ -n ${KEEP_REVOLUTIONS:-} && $name == ${KEEP_RUNS:-*_s1} ]]; then
     python3 tools/mixer_campaign.py snapshots "$work/$name" "$work/$scene" $KEEP_REVOLUTIONS 2>/dev/null |
       while read -r f; do cp -a "$f" "$pack/$name/"; done
+  fi
+  # A run whose last piece failed: the state it stopped in (grainstorm's
+  # fault snapshot, the newest), to see why, where it is small enough to
+  # carry (16 MiB: mixer case a's is 0.5 MB, case c's far more).
+  if tail -1 "$work/$name/campaign.log" 2>/dev/null | grep -q -v -E ' exit (0|3)$'; then
+    fault=$(ls "$work/$name"/fault_*.h5 2>/dev/null | sort | tail -1)
+    [[ -n $fault ]] && (($(stat -c %s "$fault") <= 16 * 1048576)) && cp -a "$fault" "$pack/$name/"
   fi
   # A finished run needs no checkpoint to go on from.
   tail -1 "$work/$name/campaign.log" 2>/dev/null | grep -q ' exit 0$' && continue
