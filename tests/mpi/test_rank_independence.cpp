@@ -198,8 +198,11 @@ TEST(RankIndependence, PolydisperseFrictionalSettlingWithMetis) {
   expect_rank_independent(settling_scene(DecompositionMethod::metis), 1500);
 }
 
-// The scene's skin sets the list's, the halo's and the decomposition's
-// reach alike (comm/scene_split.cpp): half a diameter, five times the default.
+// A skin of half a diameter, five times the default, from the scene: the
+// lists and the halo reach that far beyond contact on every rank, and the
+// result is the one rank's bit for bit. (The decomposition's coarse cells
+// take the skin too, comm/scene_split.cpp; here the slabs are thicker than
+// the halo either way, so this run would not notice cells left narrower.)
 TEST(RankIndependence, PolydisperseFrictionalSettlingWithAWideSkin) {
   SceneSpec s = settling_scene(DecompositionMethod::slabs);
   s.verlet_skin = 0.5;
