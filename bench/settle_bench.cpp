@@ -47,7 +47,7 @@ struct Options {
   bool mesh = false;  // the seed's impeller turning at 30 rpm in the bed
   bool digest = false;  // print the final state's digest (io/state_digest.hpp) after the timing
   bool contacts = true;  // count the contacts per particle at the end (a host snapshot)
-  double skin = gs::SceneSpec{}.verlet_skin;  // Verlet list skin, largest diameters
+  double skin = gs::kDefaultVerletSkin;  // Verlet list skin, largest diameters
   gs::RunOptions run{gs::default_backend()};  // backend
 };
 

@@ -29,8 +29,10 @@ int command_check(const std::vector<std::string>& args) {
   std::printf("stable limit:   %.6g s (%.4g of the contact time), set by the %s\n", scene.stable_time_step,
               scene.stable_time_step / scene.contact_time, scene.stable_step_binding.c_str());
   std::printf("steps:          %lld\n", std::llround(scene.duration / scene.time_step));
-  std::printf("verlet skin:    %.4g largest diameters (%.4g m; the memory estimate counts %.1f list entries per particle)\n",
-              scene.verlet_skin, 2 * largest_radius(scene) * scene.verlet_skin, estimated_list_entries(scene.verlet_skin));
+  std::printf("verlet skin:    %.4g largest diameters (%.4g m; the memory estimate counts %.1f list entries "
+              "per particle)\n",
+              scene.verlet_skin, 2 * largest_radius(scene) * scene.verlet_skin,
+              estimated_list_entries(scene.verlet_skin));
   std::printf("memory:         %s (%.0f bytes per particle, %s for %lld cells; the CPU backend %.0f more per particle)\n",
               human_bytes(m.total_bytes).c_str(), m.bytes_per_particle, human_bytes(m.cell_bytes).c_str(),
               m.cells, m.cpu_pair_bytes);

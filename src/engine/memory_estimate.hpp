@@ -13,7 +13,7 @@ constexpr double kEstimatedListEntries = 12;
 // grow as the volume it reaches, the cube of (1 + skin) diameters (an
 // upper bound for a close-packed bed: 54 within two diameters, 72 here).
 inline double estimated_list_entries(double skin) {
-  const double reach = (1 + std::max(skin, SceneSettings{}.verlet_skin)) / (1 + SceneSettings{}.verlet_skin);
+  const double reach = (1 + std::max(skin, kDefaultVerletSkin)) / (1 + kDefaultVerletSkin);
   return kEstimatedListEntries * reach * reach * reach;
 }
 

@@ -92,13 +92,13 @@ void Simulation::set_up(const SceneSpec& scene) {
   store_.fields_kept = particle_fields_kept(scene);
   kernels_ = make_step_kernels({b, scene.precision, scene.model, scene.effects},
                                {scene.materials, scene.pairs, scene.contact_slots, scene.surface_slots});
-  const double diameter = 2.0 * largest_radius(scene);
-  skin_ = kernels_->neighbours().uses_verlet_list() ? scene.verlet_skin * diameter : 0.0;
+  const double diameter = 2.0 * largest_radius(scene), skin = scene.verlet_skin * diameter;
+  skin_ = kernels_->neighbours().uses_verlet_list() ? skin : 0.0;
   kernels_->neighbours().watch_moves(!exchange_);
   grid_ = make_cell_grid(scene.domain_min, scene.domain_max, diameter + skin_, periodic_box(scene));
   // The halo's skin, with or without a Verlet list: ghosts then need
   // selecting only when a particle has moved half of it.
-  if (exchange_) exchange_->set_skin(scene.verlet_skin * diameter);
+  if (exchange_) exchange_->set_skin(skin);
   walls_ = scene.walls;
   removes_ = scene.has_exits();
   if (removes_)

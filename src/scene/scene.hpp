@@ -58,6 +58,10 @@ struct MarkingSpec {
   std::uint8_t back = 0;     // marker elsewhere
 };
 
+// The Verlet list's and the halo's skin where the scene does not set
+// `verlet_skin`, in largest particle diameters.
+constexpr double kDefaultVerletSkin = 0.1;
+
 // Everything a scene sets but its particles.
 struct SceneSettings {
   std::string path;                  // file it came from, for messages
@@ -81,7 +85,7 @@ struct SceneSettings {
   OutputSpec output;
   int contact_slots = 12;            // contacts a particle may have (its row in checkpoints and messages)
   int surface_slots = 4;             // of them, with walls and mesh features at once (history slots)
-  double verlet_skin = 0.1;          // Verlet list and halo skin, in largest particle diameters
+  double verlet_skin = kDefaultVerletSkin;  // Verlet list and halo skin, in largest particle diameters
   DecompositionSpec decomposition;
   std::optional<MixingSpec> mixing;  // analysis.mixing (docs/MIXING.md); none: no mixing analysis
   std::optional<MarkingSpec> marking;  // none: markers stay as created
