@@ -141,7 +141,7 @@ int main(int argc, char** argv) {
     const std::unique_ptr<gs::Transport> transport = gs::make_single_transport();
     double run_snapshot = 0, run_checkpoint = 0, run_complete = 0;
     {
-      gs::RunOutput out(scene, dir, *transport, 0);
+      gs::RunOutput out(scene, dir, *transport, "");
       const auto t = Clock::now();
       run_snapshot = timed("run_snapshot_wait", [&] { out.snapshot(sim); });
       run_checkpoint = timed("run_checkpoint_wait", [&] { out.checkpoint(sim); });

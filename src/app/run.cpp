@@ -25,6 +25,7 @@ RunRequest parse_run_args(const std::vector<std::string>& args) {
     else if (a == "--out") r.out = value();
     else if (a == "--restart") r.restart = value();
     else if (a == "--overwrite") r.overwrite = true;
+    else if (a == "--edited-scene") r.edited_scene = true;
     else if (a == "--exchange") r.exchange = value();
     else if (!a.empty() && a[0] == '-') throw std::invalid_argument("unknown option " + a);
     else if (r.scene.empty()) r.scene = a;

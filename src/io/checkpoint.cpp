@@ -147,13 +147,22 @@ std::uint64_t checkpoint_checksum(const Checkpoint& c, const std::vector<std::ui
   add_checksum_header(sum, c, c.particles.size(), history_rows);
   sum.add_value(std::uint64_t(c.checksum_block_rows));
   sum.add_array(block_checksums);
+  add_checksum_trailer(sum, c);
+  return sum.value();
+}
+
+void add_checksum_trailer(Fnv1a64& sum, const Checkpoint& c) {
   for (const Wall& w : c.walls) {
     const auto state = wall_state(w);
     sum.add(state.data(), sizeof(state));
   }
   sum.add_array(c.decomposition_cuts);
   if (c.insertion) add_insertion(sum, *c.insertion);
-  return sum.value();
+  // Only when stored, so that the checksums of older files stay valid.
+  if (!c.scene_text.empty()) {
+    sum.add_value(std::uint64_t(c.scene_text.size()));
+    sum.add(c.scene_text.data(), c.scene_text.size());
+  }
 }
 
 void write_checkpoint(const std::string& path, const Checkpoint& c) {
@@ -182,6 +191,8 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
     write_walls(f, "walls", c.walls, {});
     write_decomposition(f, c);
     if (c.insertion) write_insertion(f, *c.insertion);
+    if (!c.scene_text.empty())
+      h5::write_vector(f, "scene_text", std::vector<std::uint8_t>(c.scene_text.begin(), c.scene_text.end()));
     const std::uint64_t whole = checksum.get();
     h5::create_group(f, "checksums");
     h5::write_attribute(f, "checksums", "block_rows", std::int64_t(c.checksum_block_rows));

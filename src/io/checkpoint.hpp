@@ -46,6 +46,10 @@ struct Checkpoint {
   HostHistory history;  // in `particles` order
   std::vector<Wall> walls;  // with their pose at `time`
   std::uint64_t scene_hash = 0;  // scene_hash() of the scene file's text
+  // That text itself (dataset `scene_text`), so that a restart with an edited
+  // scene can say what the edit changed; empty in checkpoints written before
+  // 2026-12-05, which did not store it.
+  std::string scene_text;
   int rank_count = 1;
   int decomposition_axis = 2;               // slab axis: 0 x, 1 y, 2 z; -1: not slabs
   std::vector<double> decomposition_cuts;   // slab bounds along the axis [m]; empty when not slabs
@@ -76,6 +80,9 @@ std::uint64_t checkpoint_checksum(const Checkpoint& c);
 // and cut counts. Shared by checkpoint_checksum and the block-wise reader.
 void add_checksum_header(Fnv1a64& sum, const Checkpoint& c, std::uint64_t particles,
                          const std::vector<std::uint64_t>& history_rows);
+// The checksum's values after the block checksums: the walls, the cuts, the
+// insertion state and the scene text (when stored). Shared as above.
+void add_checksum_trailer(Fnv1a64& sum, const Checkpoint& c);
 
 // Throws std::invalid_argument when an array has the wrong length, and
 // h5::H5Error or std::runtime_error when writing fails (the previous file at

@@ -218,6 +218,12 @@ Checkpoint read_header(const h5::File& f, std::vector<std::uint64_t>& block_sums
   if (cuts.size() != 1) refuse(f.path(), "decomposition/cuts is not one-dimensional");
   c.decomposition_cuts = h5::read_array<double>(f, "decomposition/cuts", cuts);
   c.insertion = read_insertion(f);
+  if (h5::exists(f, "scene_text")) {
+    const std::vector<hsize_t> dims = h5::dims_of(f, "scene_text");
+    if (dims.size() != 1) refuse(f.path(), "scene_text is not one-dimensional");
+    const std::vector<std::uint8_t> bytes = h5::read_array<std::uint8_t>(f, "scene_text", dims);
+    c.scene_text.assign(bytes.begin(), bytes.end());
+  }
   const std::int64_t block_rows = h5::read_attribute<std::int64_t>(f, "checksums", "block_rows");
   if (block_rows < 1) refuse(f.path(), "checksums/block_rows is " + std::to_string(block_rows));
   c.checksum_block_rows = std::size_t(block_rows);
@@ -236,12 +242,7 @@ Checkpoint read_header(const h5::File& f, std::vector<std::uint64_t>& block_sums
   add_checksum_header(sum, c, std::uint64_t(n), history_rows);
   sum.add_value(std::uint64_t(c.checksum_block_rows));
   sum.add_array(block_sums);
-  for (const Wall& w : c.walls) {
-    const auto state = wall_state(w);
-    sum.add(state.data(), sizeof(state));
-  }
-  sum.add_array(c.decomposition_cuts);
-  if (c.insertion) add_insertion(sum, *c.insertion);
+  add_checksum_trailer(sum, c);
   const auto stored = h5::read_attribute<std::uint64_t>(f, "/", "checksum");
   if (stored != sum.value())
     refuse(f.path(), "checksum mismatch: stored " + hex(stored) + ", the header, walls and block checksums give " +
@@ -304,7 +305,9 @@ Checkpoint read_checkpoint(const std::string& path, const CheckpointExpectations
     read_arrays(f, c, hsize_t(h5::read_row_count(f, "/", "particle_count", "particles/id")), block_sums, keep);
     if (expect.scene_hash && *expect.scene_hash != c.scene_hash)
       refuse(path, "it was written for scene hash " + hex(c.scene_hash) + ", but this scene has hash " +
-                       hex(*expect.scene_hash) + " (another scene file, or the scene was edited since)");
+                       hex(*expect.scene_hash) +
+                       " (another scene file, or the scene was edited since: to continue the run with the edits, "
+                       "add --edited-scene)");
     f.close();
     return c;
   } catch (const CheckpointError&) {

@@ -107,6 +107,10 @@ H5Description describe_h5(const std::string& path) {
   char hash[24];
   std::snprintf(hash, sizeof(hash), "0x%016" PRIx64, h5::read_attribute<std::uint64_t>(f, "/", "scene_hash"));
   line(out, "scene hash", hash);
+  if (checkpoint)
+    line(out, "scene text", h5::exists(f, "scene_text")
+                                ? std::to_string(h5::dims_of(f, "scene_text").at(0)) + " bytes (dataset scene_text)"
+                                : std::string("not stored (written before 2026-12-05)"));
   if (h5::has_attribute(f, "/", "scene")) {
     const std::string scene = h5::read_string_attribute(f, "/", "scene");
     if (!scene.empty()) line(out, "scene", scene);

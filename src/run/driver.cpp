@@ -13,6 +13,7 @@
 
 #include "run/insertion_log.hpp"
 #include "run/packing_on_ranks.hpp"
+#include "run/edited_restart.hpp"
 #include "run/output_directory.hpp"
 #include "run/run_measurements.hpp"
 #include "run/run_output.hpp"
@@ -54,6 +55,8 @@ void check_request(const RunRequest& r) {
   if (r.overwrite && !r.restart.empty())
     throw std::invalid_argument("--overwrite and --restart exclude each other: a restart continues the run in its "
                                 "output directory");
+  if (r.edited_scene && r.restart.empty())
+    throw std::invalid_argument("--edited-scene needs --restart: it continues a checkpoint under an edited scene");
 }
 
 namespace {
@@ -90,11 +93,13 @@ void on_every_rank(Transport& transport, Phase&& phase) {
 // enter different collectives: every rank must run what rank 0 runs.
 void expect_same_run_everywhere(Transport& transport, const RunRequest& a, std::uint64_t hash) {
   const std::string mine = std::to_string(hash) + " " + std::to_string(a.steps) + " " + backend_name(a.backend) + " " +
-                           a.exchange + " " + (a.restart.empty() ? "new" : "restart");
+                           a.exchange + " " + (a.restart.empty() ? "new" : "restart") +
+                           (a.edited_scene ? " edited" : "");
   const Bytes first = transport.broadcast(Bytes(mine.begin(), mine.end()), 0);
   std::string error;
   if (std::string(first.begin(), first.end()) != mine)
-    error = "runs " + a.scene + " (scene hash, --steps, --backend, --exchange or --restart) differently from rank 0: "
+    error = "runs " + a.scene + " (scene hash, --steps, --backend, --exchange, --restart or --edited-scene) differently "
+            "from rank 0: "
             "every rank must run the same scene with the same options";
   throw_if_any_failed(transport, error);
 }
@@ -356,11 +361,13 @@ int run_scene(const RunRequest& request, Transport& transport) {
   const RunRequest& a = request;
   const auto setup_start = Clock::now();
   std::optional<SceneSpec> loaded;
+  std::string text;
   std::uint64_t hash = 0;
   on_every_rank(transport, [&] {
     check_request(a);
     loaded = load_scene(a.scene, PackingChecks::by_caller);  // below, each rank over its own particles
-    hash = scene_hash(file_text(a.scene));
+    text = file_text(a.scene);
+    hash = scene_hash(text);
   });
   const SceneSpec& scene = *loaded;
   expect_same_run_everywhere(transport, a, hash);
@@ -400,13 +407,23 @@ int run_scene(const RunRequest& request, Transport& transport) {
   const auto overlap_start = Clock::now();
   if (a.restart.empty()) check_overlaps_on_ranks(scene, transport, split.get());
   const double packing_seconds = check_seconds + seconds_since(overlap_start);
+  std::optional<EditedRestart> edits;
+  std::string stored_text;  // the edited restart's checkpoint's scene text
+  std::uint64_t stored_hash = 0;
   on_every_rank(transport, [&] {
     if (a.restart.empty()) return;
     CheckpointExpectations expect;
-    expect.scene_hash = hash;
+    if (!a.edited_scene) expect.scene_hash = hash;
     std::function<bool(const Vec3d&)> keep;
     if (split) keep = [&split](const Vec3d& x) { return split->owns(x); };
-    restart = restart_state(read_checkpoint(a.restart, expect, keep));
+    Checkpoint c = read_checkpoint(a.restart, expect, keep);
+    restart = restart_state(c);
+    if (!a.edited_scene) return;
+    stored_hash = c.scene_hash;
+    stored_text = std::move(c.scene_text);
+    const std::vector<Wall> stored_walls = std::move(c.walls);
+    c = {};
+    edits = adapt_to_edited_scene(*restart, stored_walls, scene);
   });
   if (restart) expect_same_step_everywhere(transport, a.restart, restart->step);
   // Collective from here on: an error on one rank alone in the middle of an
@@ -421,7 +438,7 @@ int run_scene(const RunRequest& request, Transport& transport) {
   std::unique_ptr<RunMeasurements> measurements;
   on_every_rank(transport, [&] {
     if (transport.rank() == 0) prepare_output_directory(directory, directory_use(a), scene, sim->step_count());
-    output = std::make_unique<RunOutput>(scene, directory, transport, hash);
+    output = std::make_unique<RunOutput>(scene, directory, transport, text);
     measurements = std::make_unique<RunMeasurements>(scene, directory, transport);
   });
   RunOutput& out = *output;
@@ -444,6 +461,18 @@ int run_scene(const RunRequest& request, Transport& transport) {
     out.resume(sim->step_count());
     measurements->resume(*sim);
     out.log("restarted from %s at step %lld\n", a.restart.c_str(), sim->step_count());
+  }
+  if (edits) {
+    // Over all ranks: the contacts released, and the ranks that started each history field.
+    const unsigned bits[] = {kTangentialSprings, kRollingSprings, kPeakOverlap};
+    std::vector<std::int64_t> seen = {std::int64_t(edits->dropped_wall_contacts)};
+    for (unsigned bit : bits) seen.push_back((edits->started_fields & bit) ? 1 : 0);
+    transport.sum(seen);
+    for (std::size_t k = 0; k < std::size(bits); ++k)
+      if (seen[k + 1] > 0) edits->started_fields |= bits[k];
+    for (const std::string& line : edited_restart_lines(*edits, std::size_t(seen[0]), stored_hash, hash,
+                                                        stored_text, text, scene.wall_names.size()))
+      out.log("%s\n", line.c_str());
   }
   if (exchange) out.log("decomposition: %s\n", exchange->describe().c_str());
   try {

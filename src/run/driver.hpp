@@ -23,6 +23,9 @@ struct RunRequest {
   long long steps = -1;  // -1: the scene's duration
   std::string out;       // output directory; empty: the scene's output.directory
   std::string restart;   // a checkpoint to continue from; empty: a new run
+  // The restart's scene may differ from the one that wrote the checkpoint
+  // (run/edited_restart.hpp); without it a restart requires the same file.
+  bool edited_scene = false;
   bool overwrite = false;  // replace an earlier run's files in the output directory
   // How GPU ranks move particles: "device" (NCCL), "host" (MPI through host
   // buffers), or "auto" (device when NCCL is built in and the backend is cuda).
@@ -34,7 +37,7 @@ struct RunRequest {
 
 // std::invalid_argument naming the option when the request cannot be run
 // (negative steps, an unknown exchange, a device exchange off the GPU,
-// overwrite together with restart).
+// overwrite together with restart, an edited scene without a restart).
 void check_request(const RunRequest& request);
 
 // Collective over `transport`'s ranks. Returns the exit code: 0 when the run

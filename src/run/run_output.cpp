@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 
 #include "analysis/mixing.hpp"
 #include "contact/contact_models.hpp"
@@ -13,6 +14,7 @@
 #include "comm/rank_agreement.hpp"
 #include "comm/snapshot_gather.hpp"
 #include "core/wall_clock.hpp"
+#include "io/fnv1a.hpp"
 #include "io/h5_io.hpp"
 #include "io/h5_meshes.hpp"
 #include "io/h5_snapshot.hpp"
@@ -32,8 +34,12 @@ std::string fault_snapshot_name(long long step) {
 }  // namespace
 
 RunOutput::RunOutput(const SceneSpec& scene, const std::string& directory, Transport& transport,
-                     std::uint64_t scene_hash)
-    : scene_(scene), directory_(directory), transport_(transport), scene_hash_(scene_hash) {
+                     std::string scene_text)
+    : scene_(scene),
+      directory_(directory),
+      transport_(transport),
+      scene_text_(std::move(scene_text)),
+      scene_hash_(scene_hash(scene_text_)) {
   fields_ = scene.output.fields.empty() ? default_snapshot_fields() : parse_snapshot_fields(scene.output.fields);
   if (fields_.has(SnapshotField::contact_count) && !keeps_history(scene.model, scene.effects))
     throw std::invalid_argument("output.fields: contact_count needs a contact history (friction, rolling resistance or a hysteretic contact model)");
@@ -295,6 +301,7 @@ void RunOutput::checkpoint(const Simulation& sim) {
       scene_.inlets.empty() ? std::nullopt : std::optional<InsertionState>(sim.insertion());
   // The header, walls and insertion state: none of them read by the snapshot's job.
   complete_checkpoint(staged_, sim.walls(), scene_hash_, transport_.size(), insertion);
+  staged_.scene_text = scene_text_;
   auto job = [this] {
     const Checkpoint& c = staged_;  // refilled only after finish()
     const std::string path = directory_ + "/" + checkpoint_h5_name(c.step);

@@ -36,7 +36,8 @@ namespace gs {
 
 class RunOutput {
  public:
-  RunOutput(const SceneSpec& scene, const std::string& directory, Transport& transport, std::uint64_t scene_hash);
+  // `scene_text`: the scene file's text, stored in checkpoints (its hash in every file).
+  RunOutput(const SceneSpec& scene, const std::string& directory, Transport& transport, std::string scene_text);
   ~RunOutput();
   RunOutput(const RunOutput&) = delete;
   RunOutput& operator=(const RunOutput&) = delete;
@@ -78,6 +79,7 @@ class RunOutput {
   const SceneSpec& scene_;
   std::string directory_;
   Transport& transport_;
+  std::string scene_text_;
   std::uint64_t scene_hash_;
   SnapshotFields fields_;
   std::vector<XdmfEntry> series_;

@@ -9,11 +9,7 @@
 # usage: restart.sh GRAINSTORM MPIEXEC SCENE WORKDIR
 set -euo pipefail
 gs=$1 mpiexec=$2 scene=$3 work=$4
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
-export OMP_NUM_THREADS=1 OMP_WAIT_POLICY=passive
-mpi() { local np=$1; shift; "$mpiexec" --oversubscribe --allow-run-as-root -np "$np" "$gs" "$@"; }
-last_csv() { ls "$1"/particles_*.csv | sort | tail -1; }
-fail() { echo "FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/restart_helpers.sh"
 
 steps=$(( $("$gs" check "$scene" | awk '/^steps:/ {print $2}') ))
 half=$(( steps / 2 ))

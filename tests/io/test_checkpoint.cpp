@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <algorithm>
 #include <functional>
 #include <cmath>
@@ -407,6 +409,45 @@ TEST(Checkpoint, WrongSceneIsRefused) {
   EXPECT_EQ(refusal(path, {}), "") << "no expectation, no check";
 }
 
+// The scene file's text travels in the checkpoint (for a restart with an
+// edited scene to list the edits), under the checksum; a checkpoint without
+// it (written before it was stored) still reads, with the text empty.
+TEST(Checkpoint, TheSceneTextRoundTripsUnderTheChecksum) {
+  ScratchDir dir;
+  Checkpoint c = sample_checkpoint();
+  c.scene_text = "domain: {min: [0, 0, 0], max: [1, 1, 1]}\n# a comment with a byte \xff\n";
+  const std::string path = dir.file("checkpoint.h5");
+  write_checkpoint(path, c);
+  EXPECT_EQ(read_checkpoint(path).scene_text, c.scene_text);
+
+  const std::string edited = dir.file("edited.h5");
+  copy_file(path, edited);
+  edit_h5(edited, [](hid_t f) {
+    const hid_t d = H5Dopen2(f, "scene_text", H5P_DEFAULT);
+    ASSERT_GE(d, 0);
+    std::vector<std::uint8_t> bytes(8);
+    const hid_t memory = H5Screate_simple(1, std::array<hsize_t, 1>{8}.data(), nullptr);
+    const hid_t file = H5Dget_space(d);
+    const hsize_t start = 0, count = 8;
+    H5Sselect_hyperslab(file, H5S_SELECT_SET, &start, nullptr, &count, nullptr);
+    ASSERT_GE(H5Dread(d, H5T_NATIVE_UINT8, memory, file, H5P_DEFAULT, bytes.data()), 0);
+    bytes[2] ^= 0x01;
+    ASSERT_GE(H5Dwrite(d, H5T_NATIVE_UINT8, memory, file, H5P_DEFAULT, bytes.data()), 0);
+    H5Sclose(file);
+    H5Sclose(memory);
+    H5Dclose(d);
+  });
+  const std::string why = refusal(edited);
+  EXPECT_NE(why.find("checksum mismatch"), std::string::npos) << why;
+
+  Checkpoint without = sample_checkpoint();
+  const std::string older = dir.file("older.h5");
+  write_checkpoint(older, without);
+  EXPECT_EQ(refusal(older), "");
+  EXPECT_TRUE(read_checkpoint(older).scene_text.empty());
+  edit_h5(older, [](hid_t f) { EXPECT_EQ(H5Lexists(f, "scene_text", H5P_DEFAULT), 0); });
+}
+
 TEST(Checkpoint, MissingDatasetIsRefused) {
   ScratchDir dir;
   const std::string path = dir.file("checkpoint.h5");
@@ -506,8 +547,13 @@ TEST(Checkpoint, DescribeReportsIntegrity) {
   for (const char* expected : {"kind:          checkpoint", "step 123456", "particles:     6",
                                "history:       4 slots per particle, tangential springs yes, rolling springs no",
                                "decomposition: 3 rank(s), slab axis z", "scene hash:    0x0123456789abcdef",
-                               "integrity:     complete, checksum matches"})
+                               "scene text:    not stored", "integrity:     complete, checksum matches"})
     EXPECT_NE(text.find(expected), std::string::npos) << "missing '" << expected << "' in\n" << text;
+  Checkpoint with_text = sample_checkpoint();
+  with_text.scene_text = "gravity: [0, 0, -9.81]\n";
+  write_checkpoint(path, with_text);
+  const std::string described = describe_h5(path).text;
+  EXPECT_NE(described.find("scene text:    23 bytes (dataset scene_text)"), std::string::npos) << described;
 }
 
 TEST(Checkpoint, DescribeFlagsADamagedCheckpoint) {

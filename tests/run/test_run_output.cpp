@@ -80,7 +80,7 @@ TEST_P(RunOutputTest, BackToBackOutputsEachWriteTheirOwnParticles) {
   }
   const std::unique_ptr<Transport> transport = make_single_transport();
   {
-    RunOutput out(scene, dir, *transport, 0);
+    RunOutput out(scene, dir, *transport, "");
     // Each call refills the host arrays the previous file is still being
     // written from, unless it waits for that file first.
     for (int k = 0; k < kStates; ++k) out.snapshot(*at[std::size_t(k)]);
@@ -162,7 +162,7 @@ TEST_P(RunOutputTest, CheckpointAtTheSnapshotsStateTakesItsParticles) {
   a.run(3);
   b.run(3);
   const std::unique_ptr<Transport> transport = make_single_transport();
-  RunOutput out(scene, dir, *transport, 0);
+  RunOutput out(scene, dir, *transport, "");
   const std::string at_3 = dir + "/" + checkpoint_h5_name(3), at_4 = dir + "/" + checkpoint_h5_name(4);
   out.snapshot(a);
   out.checkpoint(a);
