@@ -57,8 +57,8 @@ void DomainExchange::start_forward(ParticleStore& s, ParticleMovement& k) {
   host_out_.resize(n);
   host_in_.resize(n);
   for (std::size_t p = 0; p < n; ++p) {
-    send_bytes[p] = forward_bytes(send_list_[p].size());
-    recv_bytes[p] = forward_bytes(std::size_t(ghost_count_[p]));
+    send_bytes[p] = forward_bytes(send_list_[p].size(), s.fields_kept);
+    recv_bytes[p] = forward_bytes(std::size_t(ghost_count_[p]), s.fields_kept);
     if (!link_) recv[p] = host_in_[p].hold(router_backend_, recv_bytes[p]);
     if (send_bytes[p] == 0) continue;
     if (host_is_backend && !link_) {
@@ -97,7 +97,7 @@ void DomainExchange::finish_forward(ParticleStore& s, ParticleMovement& k) {
   lap(k, &ExchangeSplit::transfer);
   const bool host_is_backend = router_backend_ == Backend::cpu;
   for (std::size_t p = 0; p < peers_.size(); ++p) {
-    const std::size_t bytes = forward_bytes(std::size_t(ghost_count_[p]));
+    const std::size_t bytes = forward_bytes(std::size_t(ghost_count_[p]), s.fields_kept);
     if (bytes == 0) continue;
     const unsigned char* payload = inbox_[p].data();
     if (!link_) {

@@ -9,7 +9,9 @@
 //
 // Precision per field:
 //   position, velocity, angular velocity: fp64, so a 1e5 m domain keeps
-//     sub-micrometre resolution and long runs do not drift;
+//     sub-micrometre resolution and long runs do not drift (angular velocity
+//     kept only by runs whose spheres can spin: something makes torques, or
+//     a particle starts spinning);
 //   radius, mass, moment of inertia: fp32 (material constants of a particle);
 //   orientation quaternion: fp32, renormalised every step (visualisation
 //     only: kept and integrated only by runs whose snapshots hold it);
@@ -36,6 +38,10 @@ enum ParticleField : unsigned {
   kImageCounts = 1u,  // periodic runs: crossings of each periodic face (core/periodic_box.hpp)
   kFrozenFlags = 2u,  // runs with frozen particle sets: 1 for a particle that never moves
   kOrientations = 4u,  // runs whose snapshots hold orientations: nothing else reads them
+  // Runs whose spheres can spin: an effect makes torques (friction, rolling
+  // resistance), or a particle starts with an angular velocity. Without, every
+  // sphere's spin stays zero: its output reads zeros (ParticleMover::owned_to_host).
+  kAngularVelocities = 8u,
 };
 
 // The value an optional field starts from where nothing set it (a new
@@ -63,7 +69,7 @@ constexpr Quaternion start_value<Quaternion>() {
   X(inertia, float, kEveryRun)             \
   X(position, Vec3d, kEveryRun)            \
   X(velocity, Vec3d, kEveryRun)            \
-  X(angular_velocity, Vec3d, kEveryRun)    \
+  X(angular_velocity, Vec3d, kAngularVelocities) \
   X(orientation, Quaternion, kOrientations) \
   X(image, ImageCount, kImageCounts)      \
   X(frozen, std::uint8_t, kFrozenFlags)

@@ -72,7 +72,7 @@ struct ForceKernel {
   const float* mass;
   const Vec3d* position;
   const Vec3d* velocity;
-  const Vec3d* angular_velocity;
+  const Vec3d* angular_velocity;  // null where the run keeps none (core/particle_fields.hpp)
   Candidates candidates;  // contact partners of a particle, in canonical order
   PeriodicBox box;        // separations to the nearest image on the axes that wrap
   // Interactions
@@ -228,7 +228,7 @@ struct ForceKernel {
     k.normal = Vec3<Real>(d) * (Real(1) / Real(distance));  // a unit vector needs no more than force precision
     const Real ri = radius[i], rj = radius[j];
     const Real lever_i = ri - Real(0.5) * k.overlap, lever_j = rj - Real(0.5) * k.overlap;
-    const Vec3<Real> wi(angular_velocity[i]), wj(angular_velocity[j]);
+    const Vec3<Real> wi = spin(i), wj = spin(j);
     k.velocity = Vec3<Real>(velocity[i] - velocity[j]) - cross(add_rounded(wi * lever_i, wj * lever_j), k.normal);
     k.angular_velocity = wi - wj;
     const Real mi = mass[i], mj = mass[j];
@@ -237,6 +237,19 @@ struct ForceKernel {
     k.lever = lever_i;
     k.partner_lever = lever_j;
     return true;
+  }
+
+  // A sphere's angular velocity. Without friction or rolling resistance
+  // nothing turns a sphere and no force depends on its spin (the normal force
+  // sees only the normal component of the contact point's velocity, to which
+  // a spin adds none), so the kernel reads none: it is zero here, and a run
+  // keeps the field only where a particle starts spinning (its output).
+  GS_HD GS_INLINE Vec3<Real> spin(Index i) const {
+    if constexpr (kTorque) {
+      return Vec3<Real>(angular_velocity[i]);
+    } else {
+      return Vec3<Real>();
+    }
   }
 
   // Particle i against a rigid surface (an analytic wall or a mesh feature)
@@ -251,7 +264,7 @@ struct ForceKernel {
     k.normal = Vec3<Real>(normal);
     const Real ri = radius[i];
     k.lever = ri - k.overlap;
-    const Vec3<Real> wi(angular_velocity[i]);
+    const Vec3<Real> wi = spin(i);
     k.velocity = Vec3<Real>(velocity[i] - surface_velocity) - cross(wi * k.lever, k.normal);
     k.angular_velocity = wi - Vec3<Real>(surface_angular_velocity);
     k.effective_mass = mass[i];

@@ -2,7 +2,8 @@
 // What a ghost receives between rebuilds of the halo (LAMMPS's forward_comm):
 // the fields that change every step and that the force computation reads of a
 // contact partner. ForceKernel (engine/force_kernel.hpp) reads of a partner
-// its id, material, radius, mass, position, velocity and angular velocity;
+// its id, material, radius, mass, position, velocity and angular velocity
+// (only in runs that keep it: core/particle_fields.hpp, kAngularVelocities);
 // the first four never change, so they travel only when the halo is rebuilt
 // (engine/particle_message.hpp). Marker, orientation and image counts change
 // but no force reads them of a ghost. A kernel that starts reading another
@@ -17,16 +18,21 @@
 
 namespace gs {
 
-#define GS_FORWARD_FIELDS(X) \
-  X(position)                \
-  X(velocity)                \
-  X(angular_velocity)
+// X(name, kept): kept as in GS_PARTICLE_FIELDS.
+#define GS_FORWARD_FIELDS(X)  \
+  X(position, kEveryRun)      \
+  X(velocity, kEveryRun)      \
+  X(angular_velocity, kAngularVelocities)
 
-// Bytes of a forward message of m particles (every field 8-byte aligned, as
-// each is a multiple of 8 bytes long).
-inline std::size_t forward_bytes(std::size_t m) {
+// Whether a run that keeps the optional fields `kept` forwards field `bit`.
+inline bool forwards(unsigned bit, unsigned kept) { return bit == kEveryRun || (kept & bit) != 0; }
+
+// Bytes of a forward message of m particles of a run that keeps the optional
+// fields `kept` (every field 8-byte aligned, as each is a multiple of 8 bytes long).
+inline std::size_t forward_bytes(std::size_t m, unsigned kept) {
   std::size_t bytes = 0;
-#define GS_ADD_FIELD(name) bytes += m * sizeof(decltype(ParticleStore::name)::value_type);
+#define GS_ADD_FIELD(name, bit) \
+  if (forwards(bit, kept)) bytes += m * sizeof(decltype(ParticleStore::name)::value_type);
   GS_FORWARD_FIELDS(GS_ADD_FIELD)
 #undef GS_ADD_FIELD
   return bytes;

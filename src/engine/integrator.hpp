@@ -44,7 +44,8 @@ class Integrator final : public Integration {
 
  private:
   HalfKick<Real> half_kick(ParticleStore& s, const IntegrationParams& p) {
-    return HalfKick<Real>{s.velocity.data(), s.angular_velocity.data(), st_.forces.force.data(),
+    Vec3d* spin = (s.fields_kept & kAngularVelocities) != 0 ? s.angular_velocity.data() : nullptr;
+    return HalfKick<Real>{s.velocity.data(), spin, st_.forces.force.data(),
                           st_.torque ? st_.forces.torque.data() : nullptr, s.mass.data(), s.inertia.data(),
                           0.5 * p.dt, p.gravity, p.fp32_state,
                           (s.fields_kept & kFrozenFlags) != 0 ? s.frozen.data() : nullptr};

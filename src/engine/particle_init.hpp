@@ -32,7 +32,7 @@ inline void set_particle(ParticleRecords& r, std::size_t k, const ParticleInit& 
   r.inertia[k] = float(0.4 * m * p.radius * p.radius);
   r.position[k] = state(p.position);
   r.velocity[k] = state(p.velocity);
-  r.angular_velocity[k] = state(p.angular_velocity);
+  if (!r.angular_velocity.empty()) r.angular_velocity[k] = state(p.angular_velocity);
   if (!r.orientation.empty()) r.orientation[k] = start_value<Quaternion>();
   if (!r.image.empty()) r.image[k] = start_value<ImageCount>();
   if (!r.frozen.empty()) r.frozen[k] = p.frozen;

@@ -34,7 +34,7 @@ class ParticleMovement {
   virtual void unpack(ParticleStore& s, const MessageHeader& h, const unsigned char* payload, bool as_ghosts) = 0;
   // Between rebuilds of the halo: the changing fields a ghost's force partner
   // needs (engine/ghost_forward.hpp) of particles `which`, packed at `out`
-  // (backend memory of forward_bytes(which.size())); and the inverse, into
+  // (backend memory of forward_bytes(which.size(), s.fields_kept)); and the inverse, into
   // the ghosts [first, first + count) that a rebuild's message put there.
   virtual void pack_forward(const ParticleStore& s, const DeviceArray<Index>& which, unsigned char* out) const = 0;
   virtual void unpack_forward(ParticleStore& s, const unsigned char* payload, Index first, Index count) = 0;

@@ -79,6 +79,10 @@ void ParticleMover<Exec, Real>::owned_to_host(const ParticleStore& s, const Inde
   for_each_kept_particle_field(s, into, s.fields_kept, [&](const char*, const auto& a, auto& out) {
     field_to_host<Exec>(a, order, n, out, pins, staging);
   });
+  if ((s.fields_kept & kAngularVelocities) == 0) {  // nothing spins: its spin is zero
+    pins.resize(Exec::backend, into.angular_velocity, std::size_t(n));
+    std::fill(into.angular_velocity.begin(), into.angular_velocity.end(), Vec3d{});
+  }
   field_to_host<Exec>(st_.forces.force, order, n, into.force, pins, staging);
   if (st_.torque) {
     field_to_host<Exec>(st_.forces.torque, order, n, into.torque, pins, staging);

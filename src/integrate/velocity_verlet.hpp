@@ -58,7 +58,7 @@ GS_HD GS_INLINE void advance_orientation(Quaternion& q, const Vec3d& omega, doub
 template <class Real>
 struct HalfKick {
   Vec3d* velocity;
-  Vec3d* angular_velocity;
+  Vec3d* angular_velocity;   // null where the run keeps none (nothing spins: no torque either)
   const Vec3<Real>* force;
   const Vec3<Real>* torque;  // null when nothing makes torques (frictionless)
   const float* mass;
@@ -76,7 +76,7 @@ struct HalfKick {
     if (torque) angular_velocity[i] += Vec3d(torque[i]) * (half_dt / double(inertia[i]));
     if (fp32_state) {
       velocity[i] = on_fp32_grid(velocity[i]);
-      angular_velocity[i] = on_fp32_grid(angular_velocity[i]);
+      if (angular_velocity) angular_velocity[i] = on_fp32_grid(angular_velocity[i]);
     }
   }
 };
@@ -108,7 +108,8 @@ struct KickDrift {
     x += step;
     if (image) p.box.wrap(x, image[i]);
     if (p.fp32_state) x = on_fp32_grid(x);
-    if (orientation) advance_orientation(orientation[i], kick.angular_velocity[i], p.dt);
+    // Without a kept spin nothing turns: the orientation stays as it started.
+    if (orientation && kick.angular_velocity) advance_orientation(orientation[i], kick.angular_velocity[i], p.dt);
     if (!(std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(v.x) &&
           std::isfinite(v.y) && std::isfinite(v.z))) {
       report_fault(fault, kFaultNotFinite, id[i], p.step);

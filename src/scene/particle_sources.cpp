@@ -373,4 +373,17 @@ std::size_t find_first(const SceneSpec& scene, std::size_t first, std::size_t la
   return last;
 }
 
+bool starts_spinning(const SceneSpec& s) {
+  auto spins = [](const Vec3d& w) { return norm2(w) > 0; };
+  for (const ParticleInit& p : s.particles)
+    if (spins(p.angular_velocity)) return true;
+  for (const LatticeSource& l : s.lattices)
+    if (spins(l.spec.tmpl.angular_velocity)) return true;
+  for (const RandomFillSource& f : s.fills)
+    if (spins(f.spec.tmpl.angular_velocity)) return true;
+  for (const InletSpec& in : s.inlets)
+    if (spins(in.tmpl.angular_velocity)) return true;
+  return false;
+}
+
 }  // namespace gs

@@ -110,11 +110,6 @@ inline PeriodicBox periodic_box(const SceneSettings& s) {
 inline bool snapshots_hold_orientations(const OutputSpec& o) {
   return !o.fields.empty() && parse_snapshot_fields(o.fields).has(SnapshotField::orientation);
 }
-// The optional particle fields a run of the scene keeps (ParticleField bits).
-inline unsigned particle_fields_kept(const SceneSettings& s) {
-  return (s.periodic_axes != 0 ? kImageCounts : 0u) | (s.frozen_particles ? kFrozenFlags : 0u) |
-         (snapshots_hold_orientations(s.output) ? kOrientations : 0u);
-}
 
 struct SceneSpec : SceneSettings {
   // The initial particles, in kinds of sets whose ids interleave in the
@@ -130,5 +125,16 @@ struct SceneSpec : SceneSettings {
   // (scene/kept_fill_blocks.hpp); none kept when null.
   std::shared_ptr<KeptFillBlocks> kept_blocks;
 };
+
+// Whether a particle of the scene starts with a non-zero angular velocity: one
+// given one by one, a lattice's, a random fill's or an inlet's (scene/particle_sources.cpp).
+bool starts_spinning(const SceneSpec& s);
+
+// The optional particle fields a run of the scene keeps (ParticleField bits).
+inline unsigned particle_fields_kept(const SceneSpec& s) {
+  const bool spins = makes_torques(s.effects) || starts_spinning(s);
+  return (s.periodic_axes != 0 ? kImageCounts : 0u) | (s.frozen_particles ? kFrozenFlags : 0u) |
+         (snapshots_hold_orientations(s.output) ? kOrientations : 0u) | (spins ? kAngularVelocities : 0u);
+}
 
 }  // namespace gs

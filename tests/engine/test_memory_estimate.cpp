@@ -64,7 +64,11 @@ TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   const MemoryEstimate none = estimate_memory(lattice_scene(2, 0));
   EXPECT_EQ(none.history_bytes, 0);
   EXPECT_EQ(none.force_bytes, 12);  // no torque without friction
-  EXPECT_EQ(none.bytes_per_particle, 90 + 12 + 68 + 24);
+  EXPECT_EQ(none.field_bytes, 90 - 24);  // nor a spin
+  EXPECT_EQ(none.bytes_per_particle, 66 + 12 + 68 + 24);
+  SceneSpec spinning = lattice_scene(2, 0);
+  spinning.particles.front().angular_velocity = {0, 0, 1};
+  EXPECT_EQ(estimate_memory(spinning).field_bytes, 90);  // a sphere that starts spinning keeps its spin
   SceneSpec with_orientations = lattice_scene(2, kFriction);
   with_orientations.output.fields = {"position", "orientation"};
   EXPECT_EQ(estimate_memory(with_orientations).field_bytes, 90 + 16);
