@@ -7,13 +7,14 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 
+#include "run/edited_restart.hpp"
 #include "run/insertion_log.hpp"
 #include "run/packing_on_ranks.hpp"
-#include "run/edited_restart.hpp"
 #include "run/output_directory.hpp"
 #include "run/run_measurements.hpp"
 #include "run/run_output.hpp"
@@ -102,6 +103,18 @@ void expect_same_run_everywhere(Transport& transport, const RunRequest& a, std::
             "from rank 0: "
             "every rank must run the same scene with the same options";
   throw_if_any_failed(transport, error);
+}
+
+// An edited restart's report over all ranks: returns the wall contacts
+// released on every rank, and sets the history fields any rank started.
+std::size_t summed_over_ranks(Transport& transport, EditedRestart& edits) {
+  const unsigned bits[] = {kTangentialSprings, kRollingSprings, kPeakOverlap};
+  std::vector<std::int64_t> seen = {std::int64_t(edits.dropped_wall_contacts)};
+  for (unsigned bit : bits) seen.push_back((edits.started_fields & bit) ? 1 : 0);
+  transport.sum(seen);
+  for (std::size_t k = 0; k < std::size(bits); ++k)
+    if (seen[k + 1] > 0) edits.started_fields |= bits[k];
+  return std::size_t(seen[0]);
 }
 
 long long steps_per(double interval, double dt) {
@@ -463,15 +476,9 @@ int run_scene(const RunRequest& request, Transport& transport) {
     out.log("restarted from %s at step %lld\n", a.restart.c_str(), sim->step_count());
   }
   if (edits) {
-    // Over all ranks: the contacts released, and the ranks that started each history field.
-    const unsigned bits[] = {kTangentialSprings, kRollingSprings, kPeakOverlap};
-    std::vector<std::int64_t> seen = {std::int64_t(edits->dropped_wall_contacts)};
-    for (unsigned bit : bits) seen.push_back((edits->started_fields & bit) ? 1 : 0);
-    transport.sum(seen);
-    for (std::size_t k = 0; k < std::size(bits); ++k)
-      if (seen[k + 1] > 0) edits->started_fields |= bits[k];
-    for (const std::string& line : edited_restart_lines(*edits, std::size_t(seen[0]), stored_hash, hash,
-                                                        stored_text, text, scene.wall_names.size()))
+    const std::size_t dropped = summed_over_ranks(transport, *edits);
+    for (const std::string& line :
+         edited_restart_lines(*edits, dropped, stored_hash, hash, stored_text, text, scene.wall_names.size()))
       out.log("%s\n", line.c_str());
   }
   if (exchange) out.log("decomposition: %s\n", exchange->describe().c_str());
