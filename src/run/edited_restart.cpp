@@ -101,7 +101,7 @@ void check_inlets(const RestartState& s, const SceneSpec& scene) {
 bool is_wall_partner(ParticleId p) { return p >= kWallPartnerBase && p != kNoPartner; }
 
 // The stored rows re-laid to `width` contacts per particle with the fields
-// `kept`: a contact keeps its slot where the row is as wide as before,
+// `kept`: a contact keeps its slot where the row is at least as wide as before,
 // otherwise the row's contacts are packed to its front in their order;
 // contacts with walls follow `wall_to` or are released.
 HostHistory relaid(const RestartState& s, const std::vector<int>& wall_to, int width, unsigned kept,
