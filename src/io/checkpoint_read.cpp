@@ -1,7 +1,5 @@
 // read_checkpoint: every way a checkpoint can be unusable ends in a
 // CheckpointError that names the file and the cause.
-#include <cinttypes>
-#include <cstdio>
 #include <algorithm>
 #include <filesystem>
 #include <functional>
@@ -9,17 +7,12 @@
 
 #include "io/checkpoint.hpp"
 #include "io/checkpoint_insertion.hpp"
+#include "io/fnv1a.hpp"
 #include "io/h5_io.hpp"
 #include "io/h5_walls.hpp"
 
 namespace gs {
 namespace {
-
-std::string hex(std::uint64_t x) {
-  char s[24];
-  std::snprintf(s, sizeof(s), "0x%016" PRIx64, x);
-  return s;
-}
 
 [[noreturn]] void refuse(const std::string& path, const std::string& why) {
   throw CheckpointError("checkpoint " + path + " refused: " + why);
@@ -145,8 +138,8 @@ class ArrayStream {
         refuse(f_.path(), "checksums/blocks has " + std::to_string(sums_.size()) + " entries, too few for " + path);
       if (sum.value() != sums_[at])
         refuse(f_.path(), "checksum mismatch in " + path + ", particles " + std::to_string(a) + " to " +
-                              std::to_string(b - 1) + ": stored " + hex(sums_[at]) + ", data gives " +
-                              hex(sum.value()) + " (the file was damaged after it was written)");
+                              std::to_string(b - 1) + ": stored " + hex64(sums_[at]) + ", data gives " +
+                              hex64(sum.value()) + " (the file was damaged after it was written)");
       use(a, b, block);
     }
   }
@@ -245,8 +238,8 @@ Checkpoint read_header(const h5::File& f, std::vector<std::uint64_t>& block_sums
   add_checksum_trailer(sum, c);
   const auto stored = h5::read_attribute<std::uint64_t>(f, "/", "checksum");
   if (stored != sum.value())
-    refuse(f.path(), "checksum mismatch: stored " + hex(stored) + ", the header, walls and block checksums give " +
-                         hex(sum.value()) + " (the file was damaged after it was written)");
+    refuse(f.path(), "checksum mismatch: stored " + hex64(stored) + ", the header, walls and block checksums give " +
+                         hex64(sum.value()) + " (the file was damaged after it was written)");
   return c;
 }
 
@@ -304,8 +297,8 @@ Checkpoint read_checkpoint(const std::string& path, const CheckpointExpectations
     Checkpoint c = read_header(f, block_sums);
     read_arrays(f, c, hsize_t(h5::read_row_count(f, "/", "particle_count", "particles/id")), block_sums, keep);
     if (expect.scene_hash && *expect.scene_hash != c.scene_hash)
-      refuse(path, "it was written for scene hash " + hex(c.scene_hash) + ", but this scene has hash " +
-                       hex(*expect.scene_hash) +
+      refuse(path, "it was written for scene hash " + hex64(c.scene_hash) + ", but this scene has hash " +
+                       hex64(*expect.scene_hash) +
                        " (another scene file, or the scene was edited since: to continue the run with the edits, "
                        "add --edited-scene)");
     f.close();

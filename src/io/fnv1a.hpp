@@ -2,8 +2,10 @@
 // FNV-1a, 64 bit: the checksum of checkpoint data and the scene hash that ties
 // a checkpoint or snapshot to the scene file it came from. Not cryptographic;
 // it catches torn writes, flipped bytes and the wrong scene, not tampering.
+#include <cinttypes>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -55,6 +57,13 @@ class Fnv1a64 {
   }
   std::uint64_t hash_ = kOffsetBasis;
 };
+
+// "0x" and 16 hex digits: how hashes, checksums and digests are printed.
+inline std::string hex64(std::uint64_t value) {
+  char text[24];
+  std::snprintf(text, sizeof(text), "0x%016" PRIx64, value);
+  return text;
+}
 
 // FNV-1a 64 of the scene file's text, byte for byte: any edit changes it.
 inline std::uint64_t scene_hash(const std::string& scene_file_text) {

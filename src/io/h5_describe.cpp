@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "io/checkpoint.hpp"
+#include "io/fnv1a.hpp"
 #include "io/h5_io.hpp"
 #include "io/state_digest.hpp"
 
@@ -104,9 +105,7 @@ H5Description describe_h5(const std::string& path) {
   describe_particles(out, f, n);
   describe_walls(out, f);
   if (checkpoint) describe_checkpoint(out, f);
-  char hash[24];
-  std::snprintf(hash, sizeof(hash), "0x%016" PRIx64, h5::read_attribute<std::uint64_t>(f, "/", "scene_hash"));
-  line(out, "scene hash", hash);
+  line(out, "scene hash", hex64(h5::read_attribute<std::uint64_t>(f, "/", "scene_hash")));
   if (checkpoint)
     line(out, "scene text", h5::exists(f, "scene_text")
                                 ? std::to_string(h5::dims_of(f, "scene_text").at(0)) + " bytes (dataset scene_text)"
@@ -121,9 +120,7 @@ H5Description describe_h5(const std::string& path) {
     try {
       const Checkpoint c = read_checkpoint(path);
       line(out, "integrity", "complete, checksum matches");
-      char digest[24];
-      std::snprintf(digest, sizeof(digest), "0x%016" PRIx64, state_digest(c.particles, c.history));
-      line(out, "state digest", std::string(digest) + " (every field and spring, by particle id)");
+      line(out, "state digest", hex64(state_digest(c.particles, c.history)) + " (every field and spring, by particle id)");
     } catch (const CheckpointError& e) {
       line(out, "integrity", std::string("DAMAGED: ") + e.what());
       damaged = true;

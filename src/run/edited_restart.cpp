@@ -1,13 +1,12 @@
 #include "run/edited_restart.hpp"
 
 #include <algorithm>
-#include <cinttypes>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
 #include "contact/contact_models.hpp"
 #include "core/types.hpp"
+#include "io/fnv1a.hpp"
 #include "scene/scene_edits.hpp"
 #include "scene/scene_loader.hpp"
 #include "scene/scene_yaml.hpp"
@@ -149,12 +148,6 @@ HostHistory relaid(const RestartState& s, const std::vector<int>& wall_to, int w
   return out;
 }
 
-std::string hex(std::uint64_t v) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "0x%016" PRIx64, v);
-  return text;
-}
-
 std::string field_names(unsigned bits) {
   std::string names;
   HostHistory h;
@@ -193,11 +186,11 @@ std::vector<std::string> edited_restart_lines(const EditedRestart& e, std::size_
                                               const std::string& text, std::size_t scene_walls) {
   std::vector<std::string> lines;
   if (stored_hash == hash) {
-    lines.push_back("--edited-scene: the scene is the one that wrote the checkpoint (scene hash " + hex(hash) + ")");
+    lines.push_back("--edited-scene: the scene is the one that wrote the checkpoint (scene hash " + hex64(hash) + ")");
     return lines;
   }
-  lines.push_back("edited scene: the checkpoint was written for scene hash " + hex(stored_hash) + ", this scene has " +
-                  hex(hash));
+  lines.push_back("edited scene: the checkpoint was written for scene hash " + hex64(stored_hash) + ", this scene has " +
+                  hex64(hash));
   if (stored_text.empty()) {
     lines.push_back("  the checkpoint does not hold its scene's text (written before 2026-12-05): edits not listed");
   } else {
