@@ -26,7 +26,8 @@ index and of 1 - RSD, and the impeller's torque about its axis (mesh0_tz of
 NAME/timeseries.csv, the load on the first mesh) averaged over the revolution
 that ends there (mean and standard deviation over the seeds), and plots Lacey
 and 1 - RSD against revolutions (as the seed's Figs. 7-10) into PLOT_DIR when
-matplotlib is present.
+matplotlib is present: every variant whose table is in OUT_DIR, this
+campaign's just written and those analysed before.
 
 plot: the same plots from the tables analyse wrote (DATA_DIR/PREFIX_*.csv),
 every variant there, so that they can be drawn again once the runs'
@@ -217,7 +218,10 @@ def analyse(campaign, out_dir, prefix, plot_dir):
         tables[variant] = table
         print(f"{path}: {len(members)} run(s) ({', '.join(n for n, _ in members)}), revolutions 0-{max(by_rev)}")
     if plot_dir:
-        plot(tables, plot_dir, prefix)
+        # Every variant with a table in out_dir, not only this campaign's: a
+        # campaign directory may hold some variants, and plots drawn from it
+        # alone would drop the others from the shared figures.
+        plot(read_tables(out_dir, prefix), plot_dir, prefix)
 
 
 def read_tables(data_dir, prefix):
@@ -273,7 +277,7 @@ def plot(tables, plot_dir, prefix):
         path = os.path.join(plot_dir, f"{prefix}_{stem}.png")
         fig.savefig(path, dpi=110)
         plt.close(fig)
-        print(path)
+        print(f"{path}: {', '.join(tables)}")
 
 
 def main():

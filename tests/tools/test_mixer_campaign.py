@@ -104,6 +104,18 @@ with tempfile.TemporaryDirectory() as campaign:
                                                                      "campaign_one_minus_rsd.png"])
     except ImportError:
         check("plot says it has no matplotlib", "matplotlib not found" in r.stdout)
+    # analyse draws every variant with a table in its output directory, not
+    # only its campaign's: a second campaign of variant case_y alone.
+    other = os.path.join(campaign, "other")
+    os.makedirs(other)
+    write_run(other, "case_y_s1", [0.0, 0.3, 0.6, 0.8], -2.0)
+    r = subprocess.run([sys.executable, tool, "analyse", other, "--out-dir", out, "--plot-dir", plots],
+                       capture_output=True, text=True)
+    check("analyse of the second campaign exits 0", r.returncode == 0)
+    check("both tables there", os.path.exists(os.path.join(out, "campaign_case_y.csv")) and
+          os.path.exists(os.path.join(out, "campaign_case_x.csv")))
+    if "matplotlib not found" not in r.stdout:
+        check("its plots draw both variants", r.stdout.count("png: case_x, case_y") == 2)
     run_dir = os.path.join(campaign, "case_x_s1")
     r = subprocess.run([sys.executable, tool, "snapshots", run_dir, run_dir + ".yaml", "0", "2", "2.5", "9"],
                        capture_output=True, text=True)
