@@ -10,7 +10,9 @@ namespace gs {
 class Integration {
  public:
   virtual ~Integration() = default;
-  virtual void kick_drift(ParticleStore& s, const IntegrationParams& p) = 0;
+  // closing_kick: the last step's closing half kick was deferred to this
+  // pass (KickDrift::closing_kick).
+  virtual void kick_drift(ParticleStore& s, const IntegrationParams& p, bool closing_kick) = 0;
   virtual void kick(ParticleStore& s, const IntegrationParams& p) = 0;
 };
 

@@ -27,11 +27,11 @@ class Integrator final : public Integration {
  public:
   Integrator(StepState<Real>& state, NeighbourFinder<Exec>& neighbours) : st_(state), neighbours_(neighbours) {}
 
-  void kick_drift(ParticleStore& s, const IntegrationParams& p) override {
+  void kick_drift(ParticleStore& s, const IntegrationParams& p, bool closing_kick) override {
     ImageCount* image = (s.fields_kept & kImageCounts) != 0 ? s.image.data() : nullptr;
     Quaternion* orientation = (s.fields_kept & kOrientations) != 0 ? s.orientation.data() : nullptr;
     const KickDrift<Real> drift{half_kick(s, p), s.position.data(), orientation, image,
-                                s.id.data(),     p,                  st_.fault.data()};
+                                s.id.data(),     p,                  st_.fault.data(), closing_kick};
     const ListWatch watch = neighbours_.watch(s, p.step);
     if (!watch.active()) {
       Exec::parallel_for(s.n_owned, drift);

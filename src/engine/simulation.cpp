@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <utility>
 
 #include "contact/contact_time.hpp"
 #include "contact/contact_models.hpp"
@@ -227,18 +228,35 @@ std::vector<MeshLoad> Simulation::mesh_loads() const {
 
 void Simulation::rebuild_neighbours() { kernels_->neighbours().build(store_, grid_, skin_); }
 
+IntegrationParams Simulation::integration_params() const {
+  return {scene_.time_step, scene_.gravity, scene_.domain_min, scene_.domain_max, 0.5 * grid_.cell_size, step_,
+          fp32_state(scene_.precision), scene_.open_faces, periodic_box(scene_)};
+}
+
+// The closing half kick of a step reads the forces that the next step's
+// opening half kick reads too, so inside run() it waits for that step's
+// kick-drift, which applies both (KickDrift::closing_kick): one pass over the
+// velocities instead of two, the same bits. Nothing between the two reads the
+// velocities but insertion, which finishes the kick first; run() finishes it
+// before it returns or throws, so that no caller sees a half-kicked state.
+void Simulation::finish_closing_kick() {
+  if (!std::exchange(closing_kick_due_, false)) return;
+  const auto t0 = Clock::now();
+  kernels_->integration().kick(store_, integration_params());
+  timings_.integrate += phase_seconds(t0);
+}
+
 void Simulation::run(long long steps, const std::function<bool()>& stop_after_step) {
   const auto start = Clock::now();
   const double dt = scene_.time_step;
-  IntegrationParams p{dt, scene_.gravity, scene_.domain_min, scene_.domain_max, 0.5 * grid_.cell_size, 0,
-                      fp32_state(scene_.precision), scene_.open_faces, periodic_box(scene_)};
+  IntegrationParams p = integration_params();
   for (long long s = 0; s < steps; ++s) {
     // A timed step starts with an idle device, so it is charged only its own work.
     if (step_ % kTimedEvery == 0) kernels_->synchronize();
     if (exchange_) exchange_->time_phases(step_ % kTimedEvery == 0);
     auto t0 = Clock::now();
     p.step = step_ + 1;
-    kernels_->integration().kick_drift(store_, p);
+    kernels_->integration().kick_drift(store_, p, std::exchange(closing_kick_due_, false));
     if (walls_move_) move_walls(time_ + dt);
     if (meshes_move_) pose_meshes(time_ + dt);
     // Removed where the drift took them, before they can migrate or touch anything.
@@ -261,15 +279,14 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
     timings_.neighbours += phase_seconds(t0);
 
     compute_forces(dt, p.step);
-    t0 = Clock::now();
-    kernels_->integration().kick(store_, p);
-    timings_.integrate += phase_seconds(t0);
+    closing_kick_due_ = true;
     ++step_;
     time_ = double(step_) * dt;
     if (!scene_.inlets.empty()) insert_due();
     if (options_.fault_check_interval > 0 && step_ % options_.fault_check_interval == 0) check_fault();
     if (stop_after_step && stop_after_step()) break;
   }
+  finish_closing_kick();
   check_fault();
   run_seconds_ += seconds_since(start);
 }
@@ -368,7 +385,9 @@ void Simulation::check_fault() {
   if (f.code != kFaultNone)
     message = "step " + std::to_string(f.step) + ": particle " + std::to_string(f.particle) + ": " + fault_cause(f.code);
   if (exchange_) message = exchange_->first_fault(message);
-  if (!message.empty()) throw SimulationFault(message);
+  if (message.empty()) return;
+  finish_closing_kick();  // what is written after a fault is a whole step
+  throw SimulationFault(message);
 }
 
 ParticleSnapshot Simulation::snapshot() const {

@@ -119,6 +119,10 @@ class Simulation {
   void exchange_particles();
   void compute_forces(double dt, long long step);
   void finish_forward();  // the ghosts' forward, where one is in flight
+  IntegrationParams integration_params() const;
+  // The step's closing half kick, where it was deferred to the next step's
+  // kick-drift: before anything reads or changes the velocities outside a step.
+  void finish_closing_kick();
   void reorder_if_due();
   double phase_seconds(std::chrono::steady_clock::time_point start) const;
   // Steps between timed ones: each waits for the device five times.
@@ -140,6 +144,9 @@ class Simulation {
   long long last_reorder_ = 0;  // step of the last memory re-sort
   long long neighbour_builds_ = 0;
   bool forward_in_flight_ = false;  // started by exchange_particles, finished by compute_forces
+  // The last step's closing half kick is still to come (run(): the next
+  // kick-drift applies it first, or finish_closing_kick).
+  bool closing_kick_due_ = false;
   bool rebuild_due_ = false;  // the store changed (insertion): the halo is rebuilt at the next step
   long long contact_measure_step_ = -1;  // the step of the next contact pass; -1: none
   long long measured_step_ = -1;         // the step of the last one

@@ -32,6 +32,7 @@ void Simulation::insert_due() {
   for (std::size_t i = 0; i < scene_.inlets.size(); ++i) {
     const InletSpec& in = scene_.inlets[i];
     if (!batch_due(in, step_)) continue;
+    finish_closing_kick();  // the particles already there are seen at the whole step
     InletState& st = insertion_.inlets[i];
     InletBatch batch = inlet_batch(in, i, st, time_, scene_.materials);
     if (batch.pending.empty()) continue;

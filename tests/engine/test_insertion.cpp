@@ -20,11 +20,6 @@
 namespace gs::test {
 namespace {
 
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
-
 // An open box [-0.01, 0.01]^2 x [-0.02, 0.02] with a floor at z = -0.02, an
 // inlet box in its upper part feeding spheres of 0.5 to 0.8 mm.
 SceneSpec box_with_inlet(double gravity) {

@@ -133,11 +133,6 @@ TEST_P(RemovalTest, FreeFallIntoAnOutletOfEachKindAtThePredictedStep) {
   }
 }
 
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
-
 // A frictional bed settling against a wall, beside a column that falls into
 // an outlet: once the column is gone the bed's particles, their forces and
 // their contact history are bitwise those of the bed alone. The compaction
@@ -177,21 +172,21 @@ TEST_P(RemovalTest, TheStayingParticlesAreThoseOfARunWithoutTheRemovedOnes) {
   EXPECT_EQ(beside.take_removed().size(), 6u);
   const ParticleSnapshot a = alone.snapshot(), b = beside.snapshot();
   ASSERT_EQ(b.size(), bed.particles.size());
-  EXPECT_TRUE(same_bits(a.id, b.id));
-  EXPECT_TRUE(same_bits(a.position, b.position));
-  EXPECT_TRUE(same_bits(a.velocity, b.velocity));
-  EXPECT_TRUE(same_bits(a.angular_velocity, b.angular_velocity));
-  EXPECT_TRUE(same_bits(a.orientation, b.orientation));
-  EXPECT_TRUE(same_bits(a.force, b.force));
-  EXPECT_TRUE(same_bits(a.torque, b.torque));
-  EXPECT_TRUE(same_bits(a.contacts, b.contacts));
+  EXPECT_TRUE(test::same_bits(a.id, b.id));
+  EXPECT_TRUE(test::same_bits(a.position, b.position));
+  EXPECT_TRUE(test::same_bits(a.velocity, b.velocity));
+  EXPECT_TRUE(test::same_bits(a.angular_velocity, b.angular_velocity));
+  EXPECT_TRUE(test::same_bits(a.orientation, b.orientation));
+  EXPECT_TRUE(test::same_bits(a.force, b.force));
+  EXPECT_TRUE(test::same_bits(a.torque, b.torque));
+  EXPECT_TRUE(test::same_bits(a.contacts, b.contacts));
   long long contacts = 0;
   for (std::uint16_t c : a.contacts) contacts += c;
   EXPECT_GT(contacts, 48) << "the bed should be in contact (floor and neighbours)";
   const HostHistory ha = alone.history(), hb = beside.history();
-  EXPECT_TRUE(same_bits(ha.partner, hb.partner));
-  EXPECT_TRUE(same_bits(ha.tangential, hb.tangential));
-  EXPECT_TRUE(same_bits(ha.rolling, hb.rolling));
+  EXPECT_TRUE(test::same_bits(ha.partner, hb.partner));
+  EXPECT_TRUE(test::same_bits(ha.tangential, hb.tangential));
+  EXPECT_TRUE(test::same_bits(ha.rolling, hb.rolling));
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, RemovalTest, testing::ValuesIn(test::test_backends()), test::backend_label);

@@ -127,11 +127,6 @@ SceneSpec sliding_pairs_scene(const std::string& directory, double slide) {
   return s;
 }
 
-template <class T>
-bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
-
 // The checkpoint file holds `sim`'s state now: its particles and history as
 // the simulation gives them directly (not through RunOutput's arrays).
 void expect_checkpoint_of(const std::string& file, const Simulation& sim, const std::string& what) {
@@ -139,11 +134,11 @@ void expect_checkpoint_of(const std::string& file, const Simulation& sim, const 
   const ParticleSnapshot s = sim.snapshot();
   const HostHistory h = sim.history();
   EXPECT_EQ(c.step, sim.step_count()) << what;
-  EXPECT_TRUE(same_bytes(c.particles.position, s.position)) << what;
-  EXPECT_TRUE(same_bytes(c.particles.velocity, s.velocity)) << what;
-  EXPECT_TRUE(same_bytes(c.particles.force, s.force)) << what;
-  EXPECT_TRUE(same_bytes(c.history.partner, h.partner)) << what;
-  EXPECT_TRUE(same_bytes(c.history.tangential, h.tangential)) << what;
+  EXPECT_TRUE(test::same_bits(c.particles.position, s.position)) << what;
+  EXPECT_TRUE(test::same_bits(c.particles.velocity, s.velocity)) << what;
+  EXPECT_TRUE(test::same_bits(c.particles.force, s.force)) << what;
+  EXPECT_TRUE(test::same_bits(c.history.partner, h.partner)) << what;
+  EXPECT_TRUE(test::same_bits(c.history.tangential, h.tangential)) << what;
   const auto touching = std::count_if(h.partner.begin(), h.partner.end(), [](ParticleId p) { return p != kNoPartner; });
   EXPECT_EQ(touching, 1000) << what << ": every sphere has its partner in its history";
 }

@@ -1,5 +1,6 @@
 #pragma once
 // Shared helpers for tests: scenes built in code, the backends to test on.
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -7,6 +8,13 @@
 #include "engine/simulation.hpp"
 
 namespace gs::test {
+
+// Whether two arrays hold the same bytes (bitwise equality: -0 differs from
+// +0, a NaN equals itself).
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
 
 // Backends the suite runs on here: cpu always, cuda when a device is present
 // (GS_TEST_BACKENDS=cpu,cuda overrides).
