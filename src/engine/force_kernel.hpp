@@ -25,18 +25,6 @@
 
 namespace gs {
 
-// History partner id of a mesh feature (core/types.hpp): the two kind bits of
-// mesh_feature_key moved down to bits 28-29, under the mesh range's prefix.
-// Feature indices are below kMaxMeshFeatures (checked by the Simulation).
-GS_HD GS_INLINE ParticleId mesh_partner_id(std::uint32_t feature_key) {
-  return kMeshPartnerBase | ((feature_key >> 30) << 28) | (feature_key & 0x0FFFFFFFu);
-}
-
-// The inverse, for a partner id in the mesh range.
-GS_HD GS_INLINE std::uint32_t mesh_feature_key_of(ParticleId partner) {
-  return (((partner >> 28) & 3u) << 30) | (partner & 0x0FFFFFFFu);
-}
-
 // Whether a history partner is a feature adjacent to `key` (sharing a vertex,
 // hence of the same mesh): the same contact, moved on across the surface.
 struct SameMeshContact {

@@ -10,6 +10,8 @@
 #include "scene/scene_edits.hpp"
 #include "scene/scene_loader.hpp"
 #include "scene/scene_yaml.hpp"
+#include "walls/mesh.hpp"
+#include "walls/sphere_triangle.hpp"
 #include "walls/timeline.hpp"
 #include "walls/wall_geometry.hpp"
 #include "walls/wall_motion.hpp"
@@ -86,6 +88,45 @@ void check_new_walls(const RestartState& s, const SceneSpec& scene, const std::v
                                     str(depth) + " m into " + particle_at(s, i) + " with radius " + str(r) +
                                     " (more than " + str(100 * kNewWallCut) + " % of it)");
     }
+  }
+}
+
+// Whether particle i's stored contacts name the mesh feature `key` or one
+// next to it (a contact the force kernel would carry on: SameMeshContact).
+bool stored_mesh_contact(const HostHistory& h, std::size_t i, const MeshView& m, std::uint32_t key) {
+  for (std::size_t k = 0; k < std::size_t(h.slots); ++k) {
+    const ParticleId p = h.partner[i * std::size_t(h.slots) + k];
+    if (p >= kMeshPartnerBase && p < kWallPartnerBase && mesh_features_adjacent(m, key, mesh_feature_key_of(p)))
+      return true;
+  }
+  return false;
+}
+
+// A mesh that cuts into a particle where the checkpoint holds no contact of
+// that particle with the feature (or one next to it) was added, moved or
+// re-meshed by the edit. Without contact history (a frictionless law that
+// keeps none) there is nothing to tell a new cut from an old contact by, and
+// nothing is checked.
+void check_meshes(const RestartState& s, const SceneSpec& scene) {
+  const ParticleRecords& p = s.particles;
+  const HostHistory& h = p.history;
+  if (scene.meshes.n_triangles() == 0 || p.size() == 0 || h.slots == 0) return;
+  MeshSet posed = scene.meshes;
+  move_meshes(posed, s.time);
+  const double largest = double(*std::max_element(p.radius.begin(), p.radius.end()));
+  const MeshBins bins = bin_triangles(posed, 2 * largest, run_binning(2 * largest));
+  const MeshView view = with_bins(posed.view(), bins);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double r = p.radius[i];
+    auto cut = [&](const MeshContact& c) {
+      if (c.overlap <= kNewWallCut * r || stored_mesh_contact(h, i, view, c.feature_key)) return;
+      throw std::invalid_argument("mesh " + scene_yaml::quoted(posed.names[std::size_t(c.mesh)]) + " cuts " +
+                                  str(c.overlap) + " m into " + particle_at(s, i) + " with radius " + str(r) +
+                                  " (more than " + str(100 * kNewWallCut) +
+                                  " % of it) where the checkpoint holds no contact with it (added, moved or "
+                                  "re-meshed by the edit)");
+    };
+    for_each_mesh_contact(view, p.position[i], r, cut);
   }
 }
 
@@ -174,6 +215,7 @@ EditedRestart adapt_to_edited_scene(RestartState& state, const std::vector<Wall>
   for (std::size_t k = 0; k < posed.size(); ++k)
     if (!matched[k]) report.new_walls.push_back(scene.wall_names[k]);
   check_new_walls(state, scene, posed, matched);
+  check_meshes(state, scene);
   const unsigned kept = history_fields_kept(scene.model, scene.effects);
   report.slots_before = state.particles.history.slots;
   report.slots_after = kept ? scene.contact_slots : 0;

@@ -40,6 +40,10 @@ struct EditedRestart {
 //  * a particle's material is not among the scene's materials;
 //  * a particle lies outside the domain;
 //  * a new or moved wall cuts into a particle by more than 1 % of its radius;
+//  * a mesh cuts into a particle by more than 1 % of its radius where the
+//    checkpoint holds no contact of that particle with the feature cut (or
+//    one next to it): a mesh added, moved or re-meshed by the edit (not
+//    checked where the checkpoint holds no contact history);
 //  * the scene's inlets are not as many as the checkpoint's (an inlet's
 //    state is its count of particles and mass inserted);
 //  * a particle has more contacts than the scene's contact_slots.

@@ -44,6 +44,7 @@
 #include <cstdint>
 
 #include "core/hd.hpp"
+#include "core/types.hpp"
 #include "core/vec3.hpp"
 #include "walls/mesh.hpp"
 
@@ -136,6 +137,18 @@ GS_HD GS_INLINE std::uint32_t mesh_feature_key(const MeshView& m, std::int32_t t
   if (f == kFace) return std::uint32_t(t);
   if (is_edge_feature(f)) return (1u << 30) | std::uint32_t(m.edges[t].e[f - kEdge0]);
   return (2u << 30) | std::uint32_t(m.corners[t].v[f - kVertex0]);
+}
+
+// History partner id of a mesh feature (core/types.hpp): the two kind bits of
+// mesh_feature_key moved down to bits 28-29, under the mesh range's prefix.
+// Feature indices are below kMaxMeshFeatures (checked by the Simulation).
+GS_HD GS_INLINE ParticleId mesh_partner_id(std::uint32_t feature_key) {
+  return kMeshPartnerBase | ((feature_key >> 30) << 28) | (feature_key & 0x0FFFFFFFu);
+}
+
+// The inverse, for a partner id in the mesh range.
+GS_HD GS_INLINE std::uint32_t mesh_feature_key_of(ParticleId partner) {
+  return (((partner >> 28) & 3u) << 30) | (partner & 0x0FFFFFFFu);
 }
 
 // The vertices of the feature named by a mesh_feature_key (3 for a face, 2

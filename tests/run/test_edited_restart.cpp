@@ -11,6 +11,9 @@
 #include "run/edited_restart.hpp"
 #include "scene/scene_edits.hpp"
 #include "scene/scene_loader.hpp"
+#include "walls/mesh.hpp"
+#include "walls/sphere_triangle.hpp"
+#include "walls/triangle_mesh.hpp"
 
 namespace gs {
 namespace {
@@ -187,6 +190,43 @@ TEST(EditedRestart, WhatTheStateCannotFollowIsRefused) {
   inlets.insertion = InsertionState{};
   inlets.insertion->inlets.resize(1);
   expect_refused(inlets, stored, scene_of(text), "the checkpoint holds the state of 1 inlets, the edited scene has 0");
+}
+
+// The scene of scene_text() with a square mesh plate over the box's floor at
+// height z: triangles (0, 0)-(L, 0)-(L, L) and (0, 0)-(L, L)-(0, L).
+SceneSpec with_plate(double z) {
+  SceneSpec s = scene_of(scene_text());
+  TriangleMeshBuilder b("plate");
+  const double l = 0.02;
+  b.quad(b.vertex({0, 0, z}), b.vertex({l, 0, z}), b.vertex({l, l, z}), b.vertex({0, l, z}));
+  add_mesh(s.meshes, b.take(), 0);
+  return s;
+}
+
+TEST(EditedRestart, AMeshCuttingWhereNoContactWasIsRefused) {
+  const std::vector<Wall> stored = posed_walls(scene_of(scene_text()));
+  // Lowered onto the spheres' tops (z = 0.002) by 0.2 mm: 20 % of a radius.
+  RestartState cut = two_on_the_floor();
+  expect_refused(cut, stored, with_plate(0.0018),
+                 "mesh 'plate' cuts 0.0002 m into particle 0 at [0.001, 0.005, 0.001] with radius 0.001");
+  // Clear of them, or grazing them by 0.5 %: accepted.
+  RestartState clear = two_on_the_floor(), grazed = two_on_the_floor();
+  EXPECT_NO_THROW(adapt_to_edited_scene(clear, stored, with_plate(0.00201)));
+  EXPECT_NO_THROW(adapt_to_edited_scene(grazed, stored, with_plate(0.001995)));
+  // Where the checkpoint holds each sphere's contact with the face above it
+  // (triangle 1: y > x), or with a feature next to it (triangle 0 shares
+  // the diagonal), the mesh was there: the restart goes on.
+  for (std::uint32_t face : {1u, 0u}) {
+    RestartState touching = two_on_the_floor();
+    HostHistory& h = touching.particles.history;
+    h.partner[0 * 12 + 5] = mesh_partner_id(face);
+    h.partner[1 * 12 + 5] = mesh_partner_id(face);
+    EXPECT_NO_THROW(adapt_to_edited_scene(touching, stored, with_plate(0.0018))) << "face " << face;
+  }
+  // Only particle 0's contact is stored: particle 1 is named.
+  RestartState one = two_on_the_floor();
+  one.particles.history.partner[5] = mesh_partner_id(1);
+  expect_refused(one, stored, with_plate(0.0018), "into particle 1 at [0.003, 0.005, 0.001]");
 }
 
 TEST(SceneDifferences, ValueByValue) {
