@@ -5,7 +5,9 @@
 // id, as Simulation::wall_contact_history gives), with the same contact law
 // as the force kernel: springs as stored, no spring increment (dt = 0), and the velocities of the snapshot (end of
 // the step, half a step later than the force kernel saw them, which only
-// touches the damping term). Summed in particle-id order: deterministic.
+// touches the damping term). Summed in blocks of particles in id order, the
+// blocks in order: the same bits whatever the threads (which share the
+// blocks) or the ranks (the snapshot is gathered in id order).
 #include <vector>
 
 #include "core/particle_snapshot.hpp"

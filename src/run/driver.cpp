@@ -332,6 +332,10 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
           "output %.3f, total wall %.3f\n",
           t.integrate, t.neighbours, t.forces, t.exchange, wall - (t.integrate + t.neighbours + t.forces + t.exchange),
           wall);
+  const RunOutput::Split o = out.split();
+  out.log("output split (s, rank 0): waiting for the writer %.3f, host copies %.3f, wall contacts %.3f, mesh loads "
+          "%.3f, time series %.3f\n",
+          o.waiting, o.host_copy, o.wall_records, o.mesh_loads, o.series);
   out.log("neighbour lists built %lld times in %lld steps (rank 0)\n", sim.neighbour_builds(), total - first_step);
   if (exchange) {
     const ExchangeSplit x = exchange->split();

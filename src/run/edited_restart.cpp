@@ -113,8 +113,10 @@ void check_meshes(const RestartState& s, const SceneSpec& scene) {
   if (scene.meshes.n_triangles() == 0 || p.size() == 0 || h.slots == 0) return;
   MeshSet posed = scene.meshes;
   move_meshes(posed, s.time);
-  const double largest = double(*std::max_element(p.radius.begin(), p.radius.end()));
-  const MeshBins bins = bin_triangles(posed, 2 * largest, run_binning(2 * largest));
+  // Cells twice as wide as the run's narrowest (a diameter and the skin): no
+  // more of them than the run bins its meshes in, whose binning would refuse first.
+  const double cell = 4 * double(*std::max_element(p.radius.begin(), p.radius.end())) * (1 + scene.verlet_skin);
+  const MeshBins bins = bin_triangles(posed, cell, run_binning(cell));
   const MeshView view = with_bins(posed.view(), bins);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double r = p.radius[i];

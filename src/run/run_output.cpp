@@ -119,10 +119,22 @@ void RunOutput::log_written(const char* what, const std::string& path, double se
 }
 
 void RunOutput::finish() {
+  const auto start = Clock::now();
   std::string error;
   if (transport_.rank() == 0) error = writer_.wait();
   throw_if_any_failed(transport_, error);
+  split_.waiting += seconds_since(start);
 }
+
+namespace {
+// The seconds since `t`, which moves on to now: consecutive parts of a call.
+double lap(Clock::time_point& t) {
+  const Clock::time_point now = Clock::now();
+  const double seconds = std::chrono::duration<double>(now - t).count();
+  t = now;
+  return seconds;
+}
+}  // namespace
 
 void RunOutput::in_background(std::function<void()> job) {
   if (transport_.rank() == 0) writer_.start(std::move(job));
@@ -130,16 +142,21 @@ void RunOutput::in_background(std::function<void()> job) {
 
 void RunOutput::snapshot(const Simulation& sim) {
   finish();  // the previous files are complete before the host copy is refilled
+  auto t = Clock::now();
   std::vector<double> mesh_load;  // per mesh: fx fy fz tx ty tz, summed over ranks (collective)
   for (const MeshLoad& l : sim.mesh_loads())
     mesh_load.insert(mesh_load.end(), {l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y, l.torque.z});
   if (!mesh_load.empty()) transport_.sum(mesh_load);  // every rank has the same meshes
+  split_.mesh_loads += lap(t);
   stage(sim, false);
+  split_.host_copy += lap(t);
   const ParticleSnapshot& s = staged_.particles;
   const bool need_history = keeps_history(scene_.model, scene_.effects);
   const ParticleRecords on_walls =
       need_history ? gather_history_records(transport_, sim.wall_contact_history()) : ParticleRecords();
+  split_.wall_records += lap(t);
   written_by_rank_0([&] { write_timeseries_row(sim, s, on_walls, mesh_load); });
+  split_.series += lap(t);
   // The files themselves while the run steps on; the job reads staged_,
   // which the next snapshot or checkpoint refills only after finish().
   in_background([this, walls = sim.walls(), meshes = sim.meshes()] {
@@ -290,11 +307,13 @@ void RunOutput::checkpoint(const Simulation& sim) {
   const bool after_snapshot = transport_.min(staged_particles_are(sim) ? 1 : 0) == 1;
   if (after_snapshot) {
     if (writing_history_) finish();
-    stage_history(sim);
   } else {
     finish();  // the previous files are complete before the host copy is refilled
-    stage(sim, true);
   }
+  const auto t = Clock::now();
+  if (after_snapshot) stage_history(sim);
+  else stage(sim, true);
+  split_.host_copy += seconds_since(t);
   writing_history_ = true;
   if (transport_.rank() != 0) return;
   const std::optional<InsertionState> insertion =

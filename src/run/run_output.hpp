@@ -59,6 +59,14 @@ class RunOutput {
   void resume(long long step);
   // printf to stdout and the log file, rank 0 only.
   void log(const char* format, ...) __attribute__((format(printf, 2, 3)));
+  // Where the output's time went on this rank so far (wall seconds): waiting
+  // for the writer's thread (finish(), inside each snapshot and checkpoint and
+  // at the end), the host copies of particles and history with their gathers
+  // to rank 0, the particles on walls, the mesh loads and the time-series row.
+  struct Split {
+    double waiting = 0, host_copy = 0, wall_records = 0, mesh_loads = 0, series = 0;
+  };
+  const Split& split() const { return split_; }
   const std::string& directory() const { return directory_; }
 
  private:
@@ -102,6 +110,7 @@ class RunOutput {
     Index owned = -1;
   } staged_from_;
   bool writing_history_ = false;  // the writer's job in hand reads staged_.history
+  Split split_;
   HostPins pins_;  // resizes the arrays; the pinned bounce buffer of a GPU's copies
   // Last: destroyed first, so its job ends while the members it uses live.
   BackgroundWriter writer_;

@@ -7,6 +7,8 @@
 
 #include <cmath>
 
+#include <omp.h>
+
 #include "analysis/wall_loads.hpp"
 #include "contact/contact_time.hpp"
 #include "support/support.hpp"
@@ -86,6 +88,41 @@ TEST(WallLoads, StickingSphereOnInclineCarriesFriction) {
   const std::vector<MeshLoad> loads = wall_loads(scene, sim.walls(), s, sim.wall_contact_history());
   EXPECT_NEAR(loads[0].force.z / (-m * kGravity * std::cos(theta)), 1.0, 1e-3);
   EXPECT_NEAR(loads[0].force.x / (m * kGravity * std::sin(theta)), 1.0, 1e-2);
+}
+
+// 20,000 frictionless spheres pressed into a floor, each by its own depth
+// (five blocks of the sum and a part): the floor's load is the sum of the
+// linear law's k overlap over them (no velocity, no damping), and the same
+// bits on one thread and on three.
+TEST(WallLoads, ManySpheresSumToTheLawWhateverTheThreads) {
+  SceneSpec scene = base_scene(kDensity, kStiffness, 0.5);
+  scene.walls = {plane_wall({0, 0, 0}, {0, 0, 1})};
+  ParticleSnapshot s;
+  double expected = 0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    const double depth = 1e-6 * (1 + i % 97);
+    s.id.push_back(ParticleId(i));
+    s.material.push_back(0);
+    s.radius.push_back(float(kRadius));
+    s.mass.push_back(float(stored_sphere_mass(kRadius, kDensity)));
+    s.inertia.push_back(0);
+    s.position.push_back({0.0001 * (i % 100), 0.0001 * (i / 100), kRadius - depth});
+    s.velocity.push_back({});
+    s.angular_velocity.push_back({});
+    expected += kStiffness * depth;
+  }
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const std::vector<MeshLoad> one = wall_loads(scene, scene.walls, s, {});
+  omp_set_num_threads(3);
+  const std::vector<MeshLoad> three = wall_loads(scene, scene.walls, s, {});
+  omp_set_num_threads(threads);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_NEAR(-one[0].force.z / expected, 1.0, 1e-12);
+  EXPECT_EQ(one[0].force.z, three[0].force.z);
+  EXPECT_EQ(one[0].torque.x, three[0].torque.x);
+  EXPECT_EQ(one[0].torque.y, three[0].torque.y);
 }
 
 // Output reads contact counts and the springs of wall contacts from the

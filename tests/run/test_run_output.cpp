@@ -13,6 +13,7 @@
 #include <random>
 
 #include "comm/transport.hpp"
+#include "core/wall_clock.hpp"
 #include "io/checkpoint.hpp"
 #include "io/h5_snapshot.hpp"
 #include "io/io_test_helpers.hpp"
@@ -81,12 +82,22 @@ TEST_P(RunOutputTest, BackToBackOutputsEachWriteTheirOwnParticles) {
   const std::unique_ptr<Transport> transport = make_single_transport();
   {
     RunOutput out(scene, dir, *transport, "");
+    const auto start = Clock::now();
     // Each call refills the host arrays the previous file is still being
     // written from, unless it waits for that file first.
     for (int k = 0; k < kStates; ++k) out.snapshot(*at[std::size_t(k)]);
     out.checkpoint(*at[1]);
     out.checkpoint(*at[2]);
     out.finish();
+    // The output's split: its parts are disjoint spans of these calls.
+    const double wall = seconds_since(start);
+    const RunOutput::Split& t = out.split();
+    EXPECT_GT(t.host_copy, 0.0);
+    EXPECT_GT(t.series, 0.0);
+    EXPECT_GT(t.wall_records, 0.0);  // a frictional run collects its wall contacts' rows
+    EXPECT_GE(t.waiting, 0.0);
+    EXPECT_GE(t.mesh_loads, 0.0);
+    EXPECT_LE(t.waiting + t.host_copy + t.wall_records + t.mesh_loads + t.series, wall);
   }
   std::vector<ParticleId> ids(scene.particles.size());
   std::iota(ids.begin(), ids.end(), ParticleId(0));
