@@ -25,17 +25,6 @@
 
 namespace gs {
 
-// Whether a history partner is a feature adjacent to `key` (sharing a vertex,
-// hence of the same mesh): the same contact, moved on across the surface.
-struct SameMeshContact {
-  const MeshView* meshes;
-  std::uint32_t key;
-  GS_HD bool operator()(ParticleId partner) const {
-    return partner >= kMeshPartnerBase && partner < kWallPartnerBase &&
-           mesh_features_adjacent(*meshes, key, mesh_feature_key_of(partner));
-  }
-};
-
 // Where each touching pair of owned particles is computed once for both of
 // its spheres (ForceKernel::pairs_of, then sum_entries: the CPU), what the
 // first pass leaves per Verlet list entry for the second.

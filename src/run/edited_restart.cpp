@@ -92,13 +92,11 @@ void check_new_walls(const RestartState& s, const SceneSpec& scene, const std::v
 }
 
 // Whether particle i's stored contacts name the mesh feature `key` or one
-// next to it (a contact the force kernel would carry on: SameMeshContact).
+// next to it (the contact the force kernel would carry on).
 bool stored_mesh_contact(const HostHistory& h, std::size_t i, const MeshView& m, std::uint32_t key) {
-  for (std::size_t k = 0; k < std::size_t(h.slots); ++k) {
-    const ParticleId p = h.partner[i * std::size_t(h.slots) + k];
-    if (p >= kMeshPartnerBase && p < kWallPartnerBase && mesh_features_adjacent(m, key, mesh_feature_key_of(p)))
-      return true;
-  }
+  const SameMeshContact same{&m, key};
+  for (std::size_t k = 0; k < std::size_t(h.slots); ++k)
+    if (same(h.partner[i * std::size_t(h.slots) + k])) return true;
   return false;
 }
 

@@ -305,11 +305,9 @@ void RunOutput::checkpoint(const Simulation& sim) {
   // snapshot's file, which does not read it, is still being written, and the
   // checkpoint's file follows it on the writer's thread (no wait here).
   const bool after_snapshot = transport_.min(staged_particles_are(sim) ? 1 : 0) == 1;
-  if (after_snapshot) {
-    if (writing_history_) finish();
-  } else {
-    finish();  // the previous files are complete before the host copy is refilled
-  }
+  // The previous files are complete before the host copy is refilled (after
+  // a snapshot, only the history's, and only where a job still reads it).
+  if (!after_snapshot || writing_history_) finish();
   const auto t = Clock::now();
   if (after_snapshot) stage_history(sim);
   else stage(sim, true);

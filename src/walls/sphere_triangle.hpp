@@ -181,6 +181,17 @@ GS_HD GS_INLINE bool mesh_features_adjacent(const MeshView& m, std::uint32_t a, 
   return false;
 }
 
+// Whether a history partner is a feature adjacent to `key` (sharing a vertex,
+// hence of the same mesh): the same contact, moved on across the surface.
+struct SameMeshContact {
+  const MeshView* meshes;
+  std::uint32_t key;
+  GS_HD bool operator()(ParticleId partner) const {
+    return partner >= kMeshPartnerBase && partner < kWallPartnerBase &&
+           mesh_features_adjacent(*meshes, key, mesh_feature_key_of(partner));
+  }
+};
+
 GS_HD GS_INLINE ClosestPoint triangle_closest_point(const MeshView& m, std::int32_t t, const Vec3d& x) {
   const MeshCorners& c = m.corners[t];
   return closest_point_on_triangle(x, m.vertex[c.v[0]], m.vertex[c.v[1]], m.vertex[c.v[2]]);
