@@ -57,6 +57,20 @@ class ForceComputer final : public ForceComputation {
     }
   }
   void set_mesh_bins(const MeshBins& bins) override { meshes_.set_bins(bins); }
+  // Two passes over the owned particles (count, fill) around a scan of the
+  // counts, whose total comes back to the host to size the list.
+  void build_mesh_near_lists(const ParticleStore& s, double skin) override {
+    if (meshes_.n_triangles == 0) return;
+    const Index n = s.n_owned;
+    near_begin_.resize_discarding(std::size_t(n) + 1);
+    MeshNearPass<false> count{meshes_.view(), s.position.data(), s.radius.data(), skin, near_begin_.data(), nullptr};
+    Exec::parallel_for(n, count);
+    const ListOffset total = Exec::scan_counts(near_begin_.data(), n, st_.staging, "the meshes' near lists");
+    near_triangles_.resize_discarding(total);
+    Exec::parallel_for(n, MeshNearPass<true>{meshes_.view(), s.position.data(), s.radius.data(), skin,
+                                             near_begin_.data(), near_triangles_.data()});
+    near_built_at_ = s.revision;
+  }
 
   void compute(ParticleStore& s, double dt, long long step) override {
     meshes_.reserve(std::size_t(s.size()));
@@ -134,8 +148,8 @@ class ForceComputer final : public ForceComputation {
     return h;
   }
   std::size_t bytes() const override {
-    return pairs_.bytes() + walls_.bytes() + wall_screens_.bytes() + meshes_.bytes() + measures_.bytes() +
-           entry_load_.bytes() + entry_touching_.bytes();
+    return pairs_.bytes() + walls_.bytes() + wall_screens_.bytes() + meshes_.bytes() + near_begin_.bytes() +
+           near_triangles_.bytes() + measures_.bytes() + entry_load_.bytes() + entry_touching_.bytes();
   }
 
  private:
@@ -147,6 +161,8 @@ class ForceComputer final : public ForceComputation {
   void with_candidates(ParticleStore& s, F&& f) {
     if constexpr (Exec::verlet_list) {
       if (!neighbours_.list_valid(s)) throw std::logic_error("forces before the Verlet list was built");
+      if (meshes_.n_triangles > 0 && near_built_at_ != s.revision)
+        throw std::logic_error("forces before the meshes' near lists were built");
       f(neighbours_.list_candidates());
     } else {
       f(neighbours_.cell_candidates(s));
@@ -165,8 +181,9 @@ class ForceComputer final : public ForceComputation {
     return {s.id.data(), s.material.data(), s.radius.data(), s.mass.data(), s.position.data(), s.velocity.data(),
             s.angular_velocity.data(), candidates, neighbours_.box(),
             PairTable<Real, Model>{pairs_.data(), n_materials_}, walls_.data(), wall_screens_.data(), n_walls_,
-            meshes_.view(), meshes_.loads(), st_.pairs.current.template view<kKept>(), slot_table(), st_.row_width,
-            st_.forces.force.data(), kTorque ? st_.forces.torque.data() : nullptr, Real(dt), st_.fault.data(), step};
+            meshes_.view(), near_view(), meshes_.loads(), st_.pairs.current.template view<kKept>(), slot_table(),
+            st_.row_width, st_.forces.force.data(), kTorque ? st_.forces.torque.data() : nullptr, Real(dt),
+            st_.fault.data(), step};
   }
   // The two passes of each pair once, one particle per call.
   template <class K>
@@ -198,6 +215,11 @@ class ForceComputer final : public ForceComputation {
     return {entry_load_.data(), entry_touching_.data(), v.reverse.data(), s.n_owned};
   }
 
+  MeshNearView near_view() const {
+    if (meshes_.n_triangles == 0) return {};
+    return {near_begin_.data(), near_triangles_.data()};
+  }
+
   SlotTable<Real, kKept> slot_table() {
     ContactHistory<Real>& h = st_.history;
     SlotTable<Real, kKept> t;
@@ -216,6 +238,10 @@ class ForceComputer final : public ForceComputation {
   DeviceArray<WallScreen> wall_screens_;  // per wall, at the pose walls_ holds
   int n_walls_ = 0;
   DeviceMeshes meshes_;
+  // Per owned particle, from the last build of the neighbour lists (walls/mesh_near.hpp).
+  DeviceArray<ListOffset> near_begin_{Exec::backend};
+  DeviceArray<std::int32_t> near_triangles_{Exec::backend};
+  std::uint64_t near_built_at_ = ~std::uint64_t(0);  // the store's revision then
   StepState<Real>& st_;
   const NeighbourFinder<Exec>& neighbours_;
   // GRAINSTORM_FORCE_LANES, read once, not at every step (the CPU has no lanes).

@@ -5,7 +5,8 @@
 // partners in the order the candidate source gives them (CellCandidates:
 // cell by cell in a fixed order, by ascending id in a cell; ListCandidates:
 // by ascending id), then the walls in scene order, then triangle meshes, their
-// contacts in ascending triangle order of the particle's mesh bin. On a GPU
+// contacts in ascending triangle order of the particle's near list
+// (walls/mesh_near.hpp: the same contacts as its mesh cell's). On a GPU
 // a small scene gives each particle a group of lanes instead (in_group): the
 // same contacts, added in the same order, so the same bits. The CPU may
 // compute each touching pair once for both spheres instead (pairs_of, then
@@ -18,6 +19,7 @@
 #include "core/bits.hpp"
 #include "neighbor/cell_list.hpp"
 #include "neighbor/verlet_list.hpp"
+#include "walls/mesh_near.hpp"
 #include "walls/sphere_triangle.hpp"
 #include "walls/sphere_triangle_group.hpp"
 #include "walls/wall_geometry.hpp"
@@ -58,6 +60,7 @@ struct ForceKernel {
   const WallScreen* wall_screens;  // per wall: the first, cheap test
   int n_walls;
   MeshView meshes;          // n_triangles == 0: the scene has no mesh, the loop is skipped
+  MeshNearView mesh_near;   // per owned particle: the triangles it may touch (walls/mesh_near.hpp)
   MeshLoad* mesh_load;      // per owned particle x mesh: its load on the mesh; null without meshes
   // Contact history: of particle pairs, one entry per Verlet list entry; of
   // walls and mesh features, a few slots per particle keyed by partner id.
@@ -129,7 +132,10 @@ struct ForceKernel {
       int n_waiting = 0;
       if (g.leader()) clear_mesh_load(i);
       MeshContactVisitor visit{this, i, xi, &total, &touched, waiting, &n_waiting};
-      for_each_mesh_contact_in_group(meshes, xi, double(radius[i]), g, visit);  // visits on lane 0 only
+      const ListOffset first = mesh_near.begin[i];
+      const std::int32_t count = std::int32_t(mesh_near.begin[i + 1] - first);
+      for_each_near_mesh_contact_in_group(meshes, mesh_near.triangles + first, count, xi, double(radius[i]), g,
+                                          visit);  // visits on lane 0 only
       if (g.leader()) add_waiting_mesh_contacts(i, xi, waiting, n_waiting, total, touched);
     }
     if (g.leader()) finish(i, total, touched, pairs_touching);
@@ -328,7 +334,9 @@ struct ForceKernel {
     MeshContact waiting[kWaitingMeshContacts];
     int n_waiting = 0;
     MeshContactVisitor visit{this, i, xi, &total, &touched, waiting, &n_waiting};
-    for_each_mesh_contact(meshes, xi, double(radius[i]), visit);
+    const ListOffset first = mesh_near.begin[i];
+    const std::int32_t count = std::int32_t(mesh_near.begin[i + 1] - first);
+    for_each_near_mesh_contact(meshes, mesh_near.triangles + first, count, xi, double(radius[i]), visit);
     add_waiting_mesh_contacts(i, xi, waiting, n_waiting, total, touched);
   }
 

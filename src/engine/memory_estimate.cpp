@@ -45,6 +45,9 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   // Verlet list: offsets, fp32 reference positions, entries; the cell
   // list's order of the particles (neighbor/verlet_list.hpp, cell_list.hpp).
   m.list_bytes = sizeof(Index) + sizeof(Vec3f) + sizeof(Index) * entries + sizeof(Index);
+  // With meshes, the near lists' offsets (walls/mesh_near.hpp); their
+  // entries, 4 bytes per triangle near a particle, are few and left out.
+  if (scene.meshes.n_meshes() > 0) m.list_bytes += sizeof(ListOffset);
   // The staging buffer at its largest: a gather of the widest field (a
   // position) when memory is re-sorted, the sort's keys and second buffers
   // while the cell list is built, or the kept contacts at a rebuild
@@ -61,7 +64,8 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   }
   const MeshSet& meshes = scene.meshes;
   if (r > 0 && meshes.n_meshes() > 0) {
-    const MeshBinningSize bins = binning_size(meshes, 2 * r, run_binning(2 * r));
+    const double skin = 2 * r * scene.verlet_skin;
+    const MeshBinningSize bins = binning_size(meshes, 2 * r + skin, run_binning(2 * r + skin, skin));
     m.mesh_cells = bins.total_cells();
     m.mesh_entries = bins.total_entries();
     // Per vertex the reference and current pose; per triangle corners, edges,

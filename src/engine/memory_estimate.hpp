@@ -23,7 +23,7 @@ struct MemoryEstimate {
   double force_bytes = 0;         // force and torque, per particle
   double history_bytes = 0;       // contact history: surface slots and pair entries, per particle
   double rebuild_bytes = 0;       // beside the lists at a rebuild: origin rows and kept offsets, per particle
-  double list_bytes = 0;          // Verlet list and the cell list's order, per particle
+  double list_bytes = 0;          // Verlet list, the cell list's order and the meshes' near lists, per particle
   double staging_bytes = 0;       // the staging buffer at its largest (the kept contacts), per particle
   double cell_bytes = 0;          // cell tables
   // The CPU's alone, not in bytes_per_particle: computing each pair once

@@ -117,8 +117,9 @@ void Simulation::set_up(const SceneSpec& scene) {
     for (const MeshMotion& m : meshes_.motion)
       meshes_move_ = meshes_move_ || norm2(m.velocity) > 0 || norm2(m.angular_velocity) > 0 || !m.timeline.none();
     kernels_->forces().set_meshes(meshes_);
+    mesh_drift_ = MeshDrift(meshes_);
     // Bins in each mesh's own frame: binned once, whatever the motion.
-    kernels_->forces().set_mesh_bins(bin_triangles(meshes_, grid_.cell_size, run_binning(grid_.cell_size)));
+    kernels_->forces().set_mesh_bins(bin_triangles(meshes_, grid_.cell_size, run_binning(grid_.cell_size, skin_)));
   }
 }
 
@@ -226,7 +227,15 @@ std::vector<MeshLoad> Simulation::mesh_loads() const {
   return total;
 }
 
-void Simulation::rebuild_neighbours() { kernels_->neighbours().build(store_, grid_, skin_); }
+void Simulation::rebuild_neighbours() {
+  kernels_->neighbours().build(store_, grid_, skin_);
+  kernels_->forces().build_mesh_near_lists(store_, skin_);
+  mesh_drift_.built(meshes_);
+}
+
+// The meshes' motion since the lists were built, against the half skin the
+// near lists leave it (walls/mesh_near.hpp); the same on every rank.
+bool Simulation::meshes_drifted() const { return meshes_move_ && mesh_drift_.beyond(meshes_, 0.5 * skin_); }
 
 IntegrationParams Simulation::integration_params() const {
   return {scene_.time_step, scene_.gravity, scene_.domain_min, scene_.domain_max, 0.5 * grid_.cell_size, step_,
@@ -270,7 +279,7 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
     // with ranks it is rebuilt after every rebuild of the halo, whose vote
     // has already measured the moves. Memory is re-sorted only at a rebuild.
     t0 = Clock::now();
-    if (kernels_->neighbours().stale(store_)) {
+    if (kernels_->neighbours().stale(store_) || meshes_drifted()) {
       finish_forward();  // (a list built on the ghosts' last positions would be wrong)
       if (!exchange_) reorder_if_due();
       rebuild_neighbours();
@@ -317,7 +326,7 @@ void Simulation::exchange_particles() {
   auto t0 = Clock::now();
   const long long next = step_ + 1;
   const bool balance = options_.rebalance_interval > 0 && next % options_.rebalance_interval == 0;
-  if (!exchange_->halo_stale(store_, kernels_->movement(), balance || rebuild_due_)) {
+  if (!exchange_->halo_stale(store_, kernels_->movement(), balance || rebuild_due_ || meshes_drifted())) {
     exchange_->start_forward(store_, kernels_->movement());
     forward_in_flight_ = true;  // finished by compute_forces
     timings_.exchange += phase_seconds(t0);

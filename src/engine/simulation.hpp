@@ -15,6 +15,7 @@
 #include "engine/rank_exchange.hpp"
 #include "engine/step_kernels.hpp"
 #include "scene/scene.hpp"
+#include "walls/mesh_drift.hpp"
 
 namespace gs {
 
@@ -113,6 +114,7 @@ class Simulation {
   void move_walls(double t);
   void pose_meshes(double t);
   void rebuild_neighbours();
+  bool meshes_drifted() const;  // a build of the lists is due for the meshes' motion
   void insert_due();
   void append_inserted(const std::vector<ParticleInit>& inserted);
   void measure_contacts();  // the contact pass, now
@@ -139,6 +141,7 @@ class Simulation {
   bool walls_move_ = false;
   MeshSet meshes_;
   bool meshes_move_ = false;
+  MeshDrift mesh_drift_;
   double time_ = 0;
   long long step_ = 0;
   long long last_reorder_ = 0;  // step of the last memory re-sort

@@ -114,7 +114,7 @@ void check_meshes(const RestartState& s, const SceneSpec& scene) {
   // Cells twice as wide as the run's narrowest (a diameter and the skin): no
   // more of them than the run bins its meshes in, whose binning would refuse first.
   const double cell = 4 * double(*std::max_element(p.radius.begin(), p.radius.end())) * (1 + scene.verlet_skin);
-  const MeshBins bins = bin_triangles(posed, cell, run_binning(cell));
+  const MeshBins bins = bin_triangles(posed, cell, run_binning(cell, 0));
   const MeshView view = with_bins(posed.view(), bins);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double r = p.radius[i];

@@ -229,7 +229,8 @@ void check_search_grid(const Map& top, const SceneSpec& s) {
                                 " m (the largest particle diameter): over the domain's extent " +
                                 str(s.domain_max - s.domain_min) + " m that is " + str(cells) + " cells, more than " +
                                 str(kMaxGridCells) + "; shrink the domain to where the particles can go");
-  check_mesh_binning(top, s, cell);
+  // Meshes are binned in the run's cells: a diameter and the Verlet skin.
+  check_mesh_binning(top, s, cell * (1 + s.verlet_skin), cell * s.verlet_skin);
 }
 
 void resolve_time_step(const Map& top, SceneSpec& s) {

@@ -12,10 +12,11 @@ int material_index(const SceneSpec& s, const Val& v);
 // `walls:` -> s.walls and s.wall_names (needs s.materials).
 void parse_walls(const Map& top, SceneSpec& s);
 
-// Refuses a mesh whose binning in cells of `cell_size` would exceed the
-// limits of bin_triangles (walls/mesh.hpp), naming the mesh and its size
-// against the domain (needs s.meshes and the walls section).
-void check_mesh_binning(const Map& top, const SceneSpec& s, double cell_size);
+// Refuses a mesh whose binning in cells of `cell_size` for the Verlet skin
+// `skin` (run_binning) would exceed the limits of bin_triangles
+// (walls/mesh.hpp), naming the mesh and its size against the domain (needs
+// s.meshes and the walls section).
+void check_mesh_binning(const Map& top, const SceneSpec& s, double cell_size, double skin);
 
 // `domain.periodic` (a list of axes) -> a set of axis bits; scene_periodic.cpp.
 unsigned parse_periodic_axes(const Val& v);

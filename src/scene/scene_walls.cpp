@@ -151,9 +151,9 @@ int material_index(const SceneSpec& s, const Val& v) {
   fail(v, "unknown material " + quoted(name) + "; defined materials: " + join(known));
 }
 
-void check_mesh_binning(const Map& top, const SceneSpec& s, double cell_size) {
+void check_mesh_binning(const Map& top, const SceneSpec& s, double cell_size, double skin) {
   if (s.meshes.n_meshes() == 0) return;
-  const MeshBinningSize size = binning_size(s.meshes, cell_size, run_binning(cell_size));
+  const MeshBinningSize size = binning_size(s.meshes, cell_size, run_binning(cell_size, skin));
   const Vec3d domain = s.domain_max - s.domain_min;
   // Mesh m came from the m-th `mesh` entry of the walls list.
   std::int32_t m = 0;
@@ -165,7 +165,8 @@ void check_mesh_binning(const Map& top, const SceneSpec& s, double cell_size) {
     if (!(size.cells[m] <= kMaxGridCells && size.entries[m] <= kMaxBinEntries))
       fail(wall.get("mesh"), "mesh " + quoted(s.meshes.names[m]) + " spans " + str(hi - lo) +
                                  " m against a domain of " + str(domain) + " m: binning it in cells of " +
-                                 str(cell_size) + " m (the largest particle diameter) needs " + str(size.cells[m]) +
+                                 str(cell_size) + " m (the largest particle diameter and the Verlet skin) needs " +
+                                 str(size.cells[m]) +
                                  " cells (at most " + str(kMaxGridCells) + ") and up to " + str(size.entries[m]) +
                                  " triangle entries (at most 2^31 - 1), about " +
                                  str(4 * (size.cells[m] + size.entries[m]) / 1073741824.0) +
@@ -176,7 +177,8 @@ void check_mesh_binning(const Map& top, const SceneSpec& s, double cell_size) {
     fail(top.get("walls"), "the meshes together need " + str(size.total_cells()) + " cells (at most " +
                                str(kMaxGridCells) + ") and up to " + str(size.total_entries()) +
                                " triangle entries (at most 2^31 - 1) in cells of " +
-                               str(cell_size) + " m (the largest particle diameter); use coarser meshes");
+                               str(cell_size) +
+                               " m (the largest particle diameter and the Verlet skin); use coarser meshes");
 }
 
 void parse_walls(const Map& top, SceneSpec& s) {

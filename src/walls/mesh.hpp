@@ -154,10 +154,18 @@ struct BinningOptions {
   bool prune_by_distance = true;
 };
 
-// The options a run bins with in cells of `cell_size`: reach half a cell (>=
-// the largest radius), with room for the rounding of a position carried into
-// the mesh's frame.
-inline BinningOptions run_binning(double cell_size) { return {0.5 * cell_size * (1 + 1e-9), true}; }
+// Relative room on a near list's reach (walls/mesh_near.hpp), and so on the
+// bins', for the rounding of distances and poses: 1e-9 m for 1 mm spheres.
+constexpr double kMeshNearSlack = 1e-6;
+
+// The options a run bins with in cells of `cell_size` (the largest diameter
+// and the Verlet skin `skin`, or more): the reach of the near lists of the
+// largest sphere, its radius plus the skin (half a cell and half the skin)
+// and their slack, with room for the rounding of a position carried into the
+// mesh's frame.
+inline BinningOptions run_binning(double cell_size, double skin) {
+  return {0.5 * (cell_size + skin) * (1 + kMeshNearSlack) * (1 + 1e-9), true};
+}
 
 // Most (cell, triangle) entries a binning may hold: cell_begin is 32-bit.
 constexpr double kMaxBinEntries = 2147483647.0;

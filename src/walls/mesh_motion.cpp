@@ -42,4 +42,13 @@ void pose_vertices(const MeshPose& pose, const Vec3d* reference, Vec3d* current,
   for (std::size_t k = 0; k < end - begin; ++k) f(k);
 }
 
+double mesh_displacement_bound(const MeshPose& from, const MeshPose& to, const Vec3d& centre, double extent) {
+  // The spectral norm of R_to - R_from from the differences themselves:
+  // sqrt(3 - trace(R_from^T R_to)), its equal, cancels at small angles.
+  double frobenius2 = 0;
+  for (int k = 0; k < 9; ++k) frobenius2 += (to.rotation[k] - from.rotation[k]) * (to.rotation[k] - from.rotation[k]);
+  const double turn = std::sqrt(0.5 * frobenius2);
+  return turn * extent + norm(pose_point(to, centre) - pose_point(from, centre));
+}
+
 }  // namespace gs

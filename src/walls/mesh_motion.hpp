@@ -69,6 +69,15 @@ GS_HD GS_INLINE Vec3d mesh_point_velocity(const MeshPose& p, const Vec3d& x) {
   return p.velocity + cross(p.angular_velocity, x - (p.axis_point + p.shift));
 }
 
+// A bound on how far any point of a mesh has moved from pose `from` to pose
+// `to`, the mesh's reference vertices lying within `extent` of `centre`:
+// with x = R y + b (y = x_ref - centre, b = pose_point(p, centre)), a point
+// moves by (R_to - R_from) y + (b_to - b_from), and the spectral norm of
+// the difference of two rotations is its Frobenius norm over sqrt(2) (2
+// sin(theta / 2) for the angle theta between them): a point at `extent`
+// across the axis of a pure rotation attains the bound.
+double mesh_displacement_bound(const MeshPose& from, const MeshPose& to, const Vec3d& centre, double extent);
+
 // Sets current[k] = pose_point(pose, reference[k]) for k in [begin, end);
 // one functor, run by a host loop here and by Exec::parallel_for on a device.
 // Item 0 also stores the pose where the force kernel reads it (`pose_out`,

@@ -7,6 +7,7 @@
 // leader(), ballot(bool): the lanes' votes as bits 0..size-1, on every lane,
 // and shuffle(v, from): lane `from`'s v (backend/cuda/lane_group.cuh).
 #include "core/bits.hpp"
+#include "walls/mesh_near.hpp"
 #include "walls/sphere_triangle.hpp"
 
 namespace gs {
@@ -75,6 +76,17 @@ GS_HD void for_each_mesh_contact_in_group(const MeshView& m, const Vec3d& x, dou
     std::int32_t begin, end;
     m.cell_range(k, x, begin, end);
     if (end > begin) for_each_mesh_contact_in_group(m, m.cell_triangles + begin, end - begin, x, radius, g, visit);
+  }
+}
+
+// The same over a near list (walls/mesh_near.hpp), as for_each_near_mesh_contact.
+template <class Group, class Visitor>
+GS_HD void for_each_near_mesh_contact_in_group(const MeshView& m, const std::int32_t* list, std::int32_t count,
+                                               const Vec3d& x, double radius, const Group& g, Visitor& visit) {
+  for (std::int32_t first = 0, end; first < count; first = end) {
+    end = mesh_run_end(m, list, count, first);
+    if (m.pose[m.mesh[list[first]]].active)
+      for_each_mesh_contact_in_group(m, list + first, end - first, x, radius, g, visit);
   }
 }
 

@@ -220,7 +220,7 @@ TEST(MeshBinning, SizeBoundsTheBinning) {
   const MeshSet set = two_mesh_set();
   for (const double h : {0.0007, 0.0019, 0.0071, 0.03}) {
     for (const bool prune : {false, true}) {
-      const BinningOptions o = prune ? run_binning(h) : BinningOptions{0.5 * h, false};
+      const BinningOptions o = prune ? run_binning(h, 0) : BinningOptions{0.5 * h, false};
       const MeshBins bins = bin_triangles(set, h, o);
       const MeshBinningSize size = binning_size(set, h, o);
       for (std::int32_t m = 0; m < set.n_meshes(); ++m) {
@@ -244,11 +244,11 @@ TEST(MeshBinning, RefusesAHugeBinningBeforeAllocating) {
   b.quad(b.vertex({-100, -100, 0}), b.vertex({200, -100, 0}), b.vertex({200, 200, 0}), b.vertex({-100, 200, 0}));
   MeshSet set;
   add_mesh(set, b.take());
-  const MeshBinningSize size = binning_size(set, 0.002, run_binning(0.002));
+  const MeshBinningSize size = binning_size(set, 0.002, run_binning(0.002, 0));
   EXPECT_GT(size.cells[0], kMaxGridCells);
   EXPECT_GT(size.entries[0], 2e10);  // ~2.7 x (300 / 0.002)^2
   try {
-    bin_triangles(set, 0.002, run_binning(0.002));
+    bin_triangles(set, 0.002, run_binning(0.002, 0));
     ADD_FAILURE() << "not refused";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("mesh 'plate' needs"), std::string::npos) << e.what();
@@ -263,11 +263,11 @@ TEST(MeshBinning, RefusesAHugeBinningBeforeAllocating) {
   }
   MeshSet stacked;
   add_mesh(stacked, stack.take());
-  const MeshBinningSize stacked_size = binning_size(stacked, 0.001, run_binning(0.001));
+  const MeshBinningSize stacked_size = binning_size(stacked, 0.001, run_binning(0.001, 0));
   EXPECT_LT(stacked_size.cells[0], 4e6);
   EXPECT_GT(stacked_size.entries[0], kMaxBinEntries);
   try {
-    bin_triangles(stacked, 0.001, run_binning(0.001));
+    bin_triangles(stacked, 0.001, run_binning(0.001, 0));
     ADD_FAILURE() << "not refused";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("up to"), std::string::npos) << e.what();
