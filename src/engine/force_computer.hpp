@@ -58,17 +58,18 @@ class ForceComputer final : public ForceComputation {
   }
   void set_mesh_bins(const MeshBins& bins) override { meshes_.set_bins(bins); }
   // Two passes over the owned particles (count, fill) around a scan of the
-  // counts, whose total comes back to the host to size the list.
+  // counts, whose total comes back to the host to size the list; with as
+  // many lanes per particle as the forces.
   void build_mesh_near_lists(const ParticleStore& s, double skin) override {
     if (meshes_.n_triangles == 0) return;
     const Index n = s.n_owned;
     near_begin_.resize_discarding(std::size_t(n) + 1);
-    MeshNearPass<false> count{meshes_.view(), s.position.data(), s.radius.data(), skin, near_begin_.data(), nullptr};
-    Exec::parallel_for(n, count);
+    launch(n, MeshNearPass<false>{meshes_.view(), s.position.data(), s.radius.data(), skin, near_begin_.data(),
+                                  nullptr});
     const ListOffset total = Exec::scan_counts(near_begin_.data(), n, st_.staging, "the meshes' near lists");
     near_triangles_.resize_discarding(total);
-    Exec::parallel_for(n, MeshNearPass<true>{meshes_.view(), s.position.data(), s.radius.data(), skin,
-                                             near_begin_.data(), near_triangles_.data()});
+    launch(n, MeshNearPass<true>{meshes_.view(), s.position.data(), s.radius.data(), skin, near_begin_.data(),
+                                 near_triangles_.data()});
     near_built_at_ = s.revision;
   }
 
