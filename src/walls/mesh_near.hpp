@@ -2,7 +2,7 @@
 // The triangles near each particle: counted and listed at every build of the
 // neighbour lists, so that a step tests a particle against the few triangles
 // that can touch it before the next build instead of its mesh cell's whole
-// list (docs/MESHES.md, "Cost"). Particle i's are
+// list (docs/MESHES.md, "Near lists"). Particle i's are
 // triangles[begin[i] .. begin[i + 1]), ascending: every triangle of any mesh
 // (active or not) within near_reach(r_i, skin) of the particle where it was,
 // the mesh posed as it was, at the build.

@@ -324,7 +324,7 @@ struct NearestReport {
 };
 
 // How many triangles within reach for_each_mesh_contact_in lists apart; with
-// more in reach it scans the whole cell list.
+// more in reach it scans the whole list it was given.
 constexpr int kMeshInReachCap = 16;
 
 // Whether triangle t of list[0..count) reports a contact of the sphere (x,
