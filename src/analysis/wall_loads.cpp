@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 
+#include "analysis/block_sum.hpp"
 #include "contact/contact_law.hpp"
 #include "contact/contact_models.hpp"
 #include "walls/wall_geometry.hpp"
@@ -61,37 +62,27 @@ void add_loads(const std::vector<PairParams<double, Model>>& table, std::size_t 
   }
 }
 
-// Particles per block of the sum. Each block sums its particles in id order,
-// the blocks are added in order: a sum fixed by the snapshot alone (not by
-// the threads that share the blocks, nor by the ranks: the snapshot is
-// gathered in id order), over blocks that threads can share. One thread
-// over every particle took 0.09 us per particle on the host (a time-series
-// row of 64e6 spheres: about 6 s).
-constexpr std::size_t kBlock = 4096;
-
+// Summed in fixed blocks (analysis/block_sum.hpp): one thread over every
+// particle took 0.09 us per particle on the host (a time-series row of 64e6
+// spheres: about 6 s).
 template <class Model, unsigned Effects>
 std::vector<MeshLoad> loads(const SceneSpec& scene, const std::vector<Wall>& walls, const ParticleSnapshot& s,
                             const ParticleRecords& on_walls) {
   const std::vector<PairParams<double, Model>> table = make_pair_table<double, Model>(scene.materials, scene.pairs);
-  const std::size_t n = scene.materials.size(), n_walls = walls.size();
-  const std::size_t blocks = (s.size() + kBlock - 1) / kBlock;
+  const std::size_t n = scene.materials.size();
   std::vector<WallScreen> screens;
   for (const Wall& w : walls) screens.push_back(wall_screen(w));
-  std::vector<MeshLoad> partial(blocks * n_walls);
-#pragma omp parallel for schedule(dynamic, 4)
-  for (std::ptrdiff_t b = 0; b < std::ptrdiff_t(blocks); ++b) {
-    MeshLoad* out = partial.data() + std::size_t(b) * n_walls;
-    const std::size_t end = std::min(s.size(), (std::size_t(b) + 1) * kBlock);
-    for (std::size_t i = std::size_t(b) * kBlock; i < end; ++i)
-      add_loads<Model, Effects>(table, n, walls, screens, s, on_walls, i, out);
-  }
-  std::vector<MeshLoad> total(n_walls);
-  for (std::size_t b = 0; b < blocks; ++b)
-    for (std::size_t w = 0; w < n_walls; ++w) {
-      total[w].force += partial[b * n_walls + w].force;
-      total[w].torque += partial[b * n_walls + w].torque;
-    }
-  return total;
+  return sum_in_blocks(
+      s.size(), std::vector<MeshLoad>(walls.size()),
+      [&](std::vector<MeshLoad>& out, std::size_t i) {
+        add_loads<Model, Effects>(table, n, walls, screens, s, on_walls, i, out.data());
+      },
+      [](std::vector<MeshLoad>& total, const std::vector<MeshLoad>& block) {
+        for (std::size_t w = 0; w < total.size(); ++w) {
+          total[w].force += block[w].force;
+          total[w].torque += block[w].torque;
+        }
+      });
 }
 
 template <class Model>

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "analysis/block_sum.hpp"
 #include "analysis/mixing.hpp"
 #include "contact/contact_models.hpp"
 #include "analysis/wall_loads.hpp"
@@ -127,6 +128,31 @@ void RunOutput::finish() {
 }
 
 namespace {
+// A time-series row's sums over the particles, in fixed blocks on every
+// host thread (analysis/block_sum.hpp): the same bits whatever the threads
+// and ranks.
+struct SeriesSums {
+  double translational = 0, rotational = 0, max_speed = 0;
+  long long contacts = 0;
+};
+
+SeriesSums series_sums(const ParticleSnapshot& s, bool with_contacts) {
+  return sum_in_blocks(
+      s.size(), SeriesSums{},
+      [&](SeriesSums& a, std::size_t i) {
+        a.translational += 0.5 * s.mass[i] * norm2(s.velocity[i]);
+        a.rotational += 0.5 * s.inertia[i] * norm2(s.angular_velocity[i]);
+        a.max_speed = std::max(a.max_speed, norm(s.velocity[i]));
+        if (with_contacts) a.contacts += s.contacts[i];
+      },
+      [](SeriesSums& total, const SeriesSums& block) {
+        total.translational += block.translational;
+        total.rotational += block.rotational;
+        total.max_speed = std::max(total.max_speed, block.max_speed);
+        total.contacts += block.contacts;
+      });
+}
+
 // The seconds since `t`, which moves on to now: consecutive parts of a call.
 double lap(Clock::time_point& t) {
   const Clock::time_point now = Clock::now();
@@ -223,16 +249,9 @@ void RunOutput::write_snapshot_files(const ParticleSnapshot& s, const std::vecto
 void RunOutput::write_timeseries_row(const Simulation& sim, const ParticleSnapshot& s, const ParticleRecords& on_walls,
                                      const std::vector<double>& mesh_load) {
   const bool need_history = keeps_history(scene_.model, scene_.effects);
-  double translational = 0, rotational = 0, max_speed = 0;
-  long long n_contacts = 0;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    translational += 0.5 * s.mass[i] * norm2(s.velocity[i]);
-    rotational += 0.5 * s.inertia[i] * norm2(s.angular_velocity[i]);
-    max_speed = std::max(max_speed, norm(s.velocity[i]));
-    if (need_history) n_contacts += s.contacts[i];
-  }
-  std::fprintf(timeseries_, "%lld,%.17g,%zu,%.17g,%.17g,%.17g,%lld", s.step, s.time, s.size(), translational,
-               rotational, max_speed, need_history ? n_contacts : -1LL);
+  const SeriesSums sums = series_sums(s, need_history);
+  std::fprintf(timeseries_, "%lld,%.17g,%zu,%.17g,%.17g,%.17g,%lld", s.step, s.time, s.size(), sums.translational,
+               sums.rotational, sums.max_speed, need_history ? sums.contacts : -1LL);
   for (const MeshLoad& l : wall_loads(scene_, sim.walls(), s, on_walls))
     for (double x : {l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y, l.torque.z})
       std::fprintf(timeseries_, ",%.17g", x);
