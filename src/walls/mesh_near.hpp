@@ -34,6 +34,15 @@ struct MeshNearView {
   const std::int32_t* triangles = nullptr;
 };
 
+// A group of one lane (a host thread, or a GPU thread alone): the lane
+// group's interface (backend/cuda/lane_group.cuh) where nothing is shared.
+struct OneLane {
+  static constexpr int size = 1;
+  static constexpr int rank = 0;
+  GS_HD static bool leader() { return true; }
+  GS_HD static unsigned ballot(bool vote) { return vote ? 1u : 0u; }
+};
+
 // One pass of the build over particle i: the count into begin[i + 1] (Fill
 // false; item 0 also sets begin[0] = 0), or the triangles into their places
 // after the scan of the counts (Fill true). The mesh bins must reach
@@ -41,6 +50,7 @@ struct MeshNearView {
 // GPU a small scene gives each particle a group of lanes (in_group), as its
 // force kernel does: one thread per sphere scanned a cell of the impeller's
 // hub, a hundred triangles, for 90 us of mixer case a's passes of 7,680.
+// Elsewhere a particle is one lane's.
 template <bool Fill>
 struct MeshNearPass {
   static constexpr int kMinBlocksPerSM = 4;  // a launch hint, as the force kernel's
@@ -50,32 +60,13 @@ struct MeshNearPass {
   double skin;
   ListOffset* begin;
   std::int32_t* triangles;  // Fill only
-  GS_HD void operator()(Index i) const {
-    const Vec3d x = position[i];
-    const double reach = near_reach(double(radius[i]), skin);
-    ListOffset k = Fill ? begin[i] : 0;
-    for (std::int32_t m = 0; m < meshes.n_meshes; ++m) {
-      std::int32_t first, end;
-      meshes.cell_range(m, x, first, end);
-      for (std::int32_t c = first; c < end; ++c) {
-        const std::int32_t t = meshes.cell_triangles[c];
-        if (!(triangle_closest_point(meshes, t, x).distance <= reach)) continue;
-        if constexpr (Fill) triangles[k] = t;
-        ++k;
-      }
-    }
-    if constexpr (!Fill) {
-      if (i == 0) begin[0] = 0;
-      begin[i + 1] = k;
-    }
-  }
+  GS_HD void operator()(Index i) const { in_group(i, OneLane{}); }
 
-#if defined(__CUDACC__)
   // The same by the lanes of g (backend/cuda/lane_group.cuh): lane r tests
   // the cell's triangles r, r + g.size, ...; the near ones of each round are
   // written in cell order, after those of the lanes before them.
   template <class Group>
-  __device__ void in_group(Index i, const Group& g) const {
+  GS_HD void in_group(Index i, const Group& g) const {
     const Vec3d x = position[i];
     const double reach = near_reach(double(radius[i]), skin);
     ListOffset k = Fill ? begin[i] : 0;
@@ -99,7 +90,6 @@ struct MeshNearPass {
       }
     }
   }
-#endif
 };
 
 // The end of the run of entries list[first..) on one mesh (a near list
