@@ -59,14 +59,18 @@ class ForceComputer final : public ForceComputation {
   void set_mesh_bins(const MeshBins& bins) override { meshes_.set_bins(bins); }
   // Two passes over the owned particles (count, fill) around a scan of the
   // counts, whose total comes back to the host to size the list; with as
-  // many lanes per particle as the forces.
+  // many lanes per particle as the forces. The scan checks its offsets for
+  // wrapping (one more wait for the device) only where the bound on the
+  // lists' length does not rule it out.
   void build_mesh_near_lists(const ParticleStore& s, double skin) override {
     if (meshes_.n_triangles == 0) return;
     const Index n = s.n_owned;
     near_begin_.resize_discarding(std::size_t(n) + 1);
     launch(n, MeshNearPass<false>{meshes_.view(), s.position.data(), s.radius.data(), skin, near_begin_.data(),
                                   nullptr});
-    const ListOffset total = Exec::scan_counts(near_begin_.data(), n, st_.staging, "the meshes' near lists");
+    const bool bounded = double(n) * double(meshes_.near_bound) < 4294967296.0;
+    const ListOffset total =
+        Exec::scan_counts(near_begin_.data(), n, st_.staging, bounded ? nullptr : "the meshes' near lists");
     near_triangles_.resize_discarding(total);
     launch(n, MeshNearPass<true>{meshes_.view(), s.position.data(), s.radius.data(), skin, near_begin_.data(),
                                  near_triangles_.data()});

@@ -4,6 +4,8 @@
 // materials and bins are uploaded once; every step the meshes move, kernels
 // pose the vertices from the reference (ForceComputer::set_mesh_pose).
 // Empty, and never read by a kernel, when the scene has none.
+#include <algorithm>
+#include <cstdint>
 #include <vector>
 
 #include "backend/device_array.hpp"
@@ -31,6 +33,9 @@ struct DeviceMeshes {
   DeviceArray<std::int32_t> cell_begin, cell_triangles;
   DeviceArray<MeshLoad> load;  // per particle x mesh
   std::int32_t n_triangles = 0, n_meshes = 0;
+  // The most triangles a particle's near list can hold (walls/mesh_near.hpp:
+  // one cell of each mesh): the longest cell list of each mesh, summed.
+  std::int64_t near_bound = 0;
 
   void set(const MeshSet& s) {
     n_triangles = s.n_triangles();
@@ -51,6 +56,13 @@ struct DeviceMeshes {
     bin_first_cell.from_host(b.first_cell);
     cell_begin.from_host(b.cell_begin);
     cell_triangles.from_host(b.triangles);
+    near_bound = 0;
+    for (std::size_t m = 0; m + 1 < b.first_cell.size(); ++m) {
+      std::int64_t longest = 0;
+      for (std::int64_t c = b.first_cell[m]; c < b.first_cell[m + 1]; ++c)
+        longest = std::max<std::int64_t>(longest, b.cell_begin[std::size_t(c) + 1] - b.cell_begin[std::size_t(c)]);
+      near_bound += longest;
+    }
   }
   // Room for the loads of n particles (only when there are meshes).
   void reserve(std::size_t n) {
