@@ -36,6 +36,9 @@ int command_check(const std::vector<std::string>& args) {
   std::printf("memory:         %s (%.0f bytes per particle, %s for %lld cells; the CPU backend %.0f more per particle)\n",
               human_bytes(m.total_bytes).c_str(), m.bytes_per_particle, human_bytes(m.cell_bytes).c_str(),
               m.cells, m.cpu_pair_bytes);
+  if (m.gpu_kept_bytes > 0)
+    std::printf("                on a GPU also %s: the last build's list and pair tables, kept for the next\n",
+                human_bytes(m.gpu_kept_bytes).c_str());
   if (scene.meshes.n_meshes() > 0)
     std::printf("meshes:         %d triangles, %s with their binning (%.3g cells, up to %.3g entries)\n",
                 int(scene.meshes.n_triangles()), human_bytes(m.mesh_bytes).c_str(), m.mesh_cells, m.mesh_entries);

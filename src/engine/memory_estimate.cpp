@@ -4,6 +4,7 @@
 
 #include "contact/contact_models.hpp"
 #include "core/particle_fields.hpp"
+#include "engine/pair_history.hpp"
 #include "neighbor/cell_grid.hpp"
 #include "neighbor/verlet_list.hpp"
 #include "scene/particle_sources.hpp"
@@ -23,7 +24,8 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   if (makes_torques(scene.effects)) m.force_bytes += 3 * real;  // torque
   const unsigned fields_kept = history_fields_kept(scene.model, scene.effects);
   const double entries = estimated_list_entries(scene.verlet_skin);
-  double kept = 0;  // the kept contacts at a rebuild, per particle
+  double kept = 0;        // the kept contacts at a rebuild, per particle
+  double pair_entry = 0;  // a list entry's touching flag and springs
   if (fields_kept != 0) {
     double springs = 0;  // one contact's history fields
     const bool wide = real == 8;
@@ -33,8 +35,8 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
 #undef GS_ADD_FIELD
     // Surface slots of a partner id and the springs; a touching flag and the
     // springs per list entry (engine/pair_history.hpp).
-    const double entry = sizeof(std::uint8_t) + springs;
-    m.history_bytes = (sizeof(ParticleId) + springs) * scene.surface_slots + entry * entries;
+    pair_entry = sizeof(std::uint8_t) + springs;
+    m.history_bytes = (sizeof(ParticleId) + springs) * scene.surface_slots + pair_entry * entries;
     // At a rebuild, each particle's touching contacts (a partner id and the
     // springs; at most twelve touch in a close-packed bed) wait in the
     // staging buffer for the new list (engine/pair_keep.hpp), beside the old
@@ -73,6 +75,13 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
     m.mesh_bytes = bins.bytes() + 48.0 * meshes.n_vertices() + 29.0 * meshes.n_triangles() + 8.0 * meshes.n_edges;
   }
   m.total_bytes = m.bytes_per_particle * double(particle_count(scene)) + m.cell_bytes + m.mesh_bytes;
+  if (fields_kept != 0) {
+    // The old list's offsets and entries, its pair entries, the origin rows
+    // and the kept offsets.
+    const double per_particle = sizeof(ListOffset) + (sizeof(Index) + pair_entry) * entries + m.rebuild_bytes;
+    const double kept_tables = per_particle * double(particle_count(scene));
+    if (kept_tables < double(kKeepDetachedBelow)) m.gpu_kept_bytes = kept_tables;
+  }
   return m;
 }
 

@@ -30,6 +30,11 @@ struct MemoryEstimate {
   // keeps per list entry the partner's reverse entry, a load (force and
   // torque) and a touching flag (engine/force_kernel.hpp, EntryLoads), per particle.
   double cpu_pair_bytes = 0;
+  // A GPU's alone, not in total_bytes: where the last build's list and pair
+  // tables hold less than kKeepDetachedBelow (engine/pair_history.hpp), a
+  // GPU keeps them for the next build instead of freeing them; their bytes
+  // for the whole run, else 0.
+  double gpu_kept_bytes = 0;
   long long cells = 0;
   double mesh_bytes = 0;          // mesh arrays and their binning (a bound, walls/mesh.hpp)
   double mesh_cells = 0;          // cells of the meshes' grids

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "backend/backend.hpp"
 #include "backend/host_flags.hpp"
 #include "engine/neighbour_search.hpp"
 #include "neighbor/cell_list.hpp"
@@ -34,7 +35,10 @@ class NeighbourFinder final : public NeighbourSearch {
   // holds the cell list's sort buffers while it is built.
   explicit NeighbourFinder(DeviceArray<unsigned char>& scratch)
       : cells_(Exec::backend), verlet_(Exec::backend), split_order_(Exec::backend), scratch_(scratch),
-        verdicts_(Exec::backend) {}
+        verdicts_(Exec::backend) {
+    // As many lanes per particle as the forces take (GRAINSTORM_FORCE_LANES, read once).
+    if constexpr (Exec::backend == Backend::cuda) verlet_.lanes_setting = force_lanes_setting();
+  }
 
   void build_cell_list(const ParticleStore& s, const CellGrid& grid) override {
     if (follower_) follower_->list_replacing(s);

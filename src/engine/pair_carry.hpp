@@ -77,6 +77,11 @@ class PairCarry final : public StoreObserver, public ListFollower {
 
  private:
   void detach(const ParticleStore& s);
+  // Whether this build frees the detached tables (set by list_building):
+  // always on the CPU, and on a GPU where they hold kKeepDetachedBelow
+  // bytes or more (engine/pair_history.hpp). Below that a GPU keeps them,
+  // emptied, and the next detach swaps them into the new list's place.
+  bool free_detached_ = true;
 
   StepState<Real>& st_;
   NeighbourFinder<Exec>& finder_;
@@ -133,12 +138,22 @@ void PairCarry<Exec, Real>::list_building(const ParticleStore& s) {
                                          reinterpret_cast<T*>(base + kept_.field[f])});
     ++f;
   });
-  h.carried.free();
-  h.carried_begin = DeviceArray<ListOffset>(Exec::backend);
-  h.carried_partner = DeviceArray<Index>(Exec::backend);
-  h.origin = DeviceArray<Index>(Exec::backend);
-  h.pending_partner = DeviceArray<ParticleId>(Exec::backend);
-  h.pending.free();
+  free_detached_ = Exec::backend == Backend::cpu || h.detached_bytes() >= kKeepDetachedBelow;
+  if (free_detached_) {
+    h.carried.free();
+    h.carried_begin = DeviceArray<ListOffset>(Exec::backend);
+    h.carried_partner = DeviceArray<Index>(Exec::backend);
+    h.origin = DeviceArray<Index>(Exec::backend);
+    h.pending_partner = DeviceArray<ParticleId>(Exec::backend);
+    h.pending.free();
+  } else {  // emptied; the next detach swaps their storage into the new list's place
+    h.carried.clear();
+    h.carried_begin.resize(0);
+    h.carried_partner.resize(0);
+    h.origin.resize(0);
+    h.pending_partner.resize(0);
+    h.pending.clear();
+  }
   h.pending_rows = 0;
 }
 
@@ -162,7 +177,7 @@ void PairCarry<Exec, Real>::list_built(const ParticleStore& s) {
                                                       to.data()});
     ++f;
   });
-  h.kept_begin = DeviceArray<ListOffset>(Exec::backend);
+  if (free_detached_) h.kept_begin = DeviceArray<ListOffset>(Exec::backend);
   h.attached = true;
 }
 

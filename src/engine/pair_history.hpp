@@ -41,6 +41,13 @@
 
 namespace gs {
 
+// Detached tables that hold fewer bytes than this are kept on a GPU from one
+// build to the next, emptied, instead of freed (engine/pair_carry.hpp): each
+// cudaFree waits for the device, six times a build of mixer case a, which
+// builds every dozen steps. Larger ones are freed before the new list is
+// allocated, so that the two are never held at once.
+constexpr std::size_t kKeepDetachedBelow = std::size_t(64) << 20;
+
 // origin values: a carried row, kPendingBase + a pending row, or none.
 constexpr Index kNoOrigin = -1;
 constexpr Index kPendingBase = Index(1) << 30;
@@ -68,6 +75,10 @@ struct PairEntries {
     for_each_history_field(*this, [&](const char*, unsigned bit, auto& a) {
       if (kept & bit) a.resize(n);
     });
+  }
+  void clear() {  // no entries, the storage kept
+    touching.resize(0);
+    for_each_history_field(*this, [](const char*, unsigned, auto& a) { a.resize(0); });
   }
   void free() {
     const Backend b = touching.backend();
@@ -133,6 +144,12 @@ struct PairHistory {
   // During a build: the kept table's offsets, per owned particle + 1 (its
   // contacts lie in the staging buffer: engine/pair_keep.hpp).
   DeviceArray<ListOffset> kept_begin;
+
+  // The detached tables' storage, and kept_begin's.
+  std::size_t detached_bytes() const {
+    return carried_begin.bytes() + carried_partner.bytes() + carried.bytes() + origin.bytes() +
+           pending_partner.bytes() + pending.bytes() + kept_begin.bytes();
+  }
 
   DetachedTables detached_tables() const {
     return {origin.data(),          Index(origin.size()),    carried_begin.data(),

@@ -36,14 +36,19 @@ struct SortPairs {
   int key_bits;  // the keys' significant low bits
 };
 
+// A particle's sort key: its cell above id_bits bits of its id (32), or the
+// cell alone (id_bits 0: the stable sort then keeps a cell's particles in
+// memory order).
 struct CellKeys {
   const Vec3d* position;
   const ParticleId* id;
   CellGrid grid;
   std::uint64_t* keys;
   Index* values;
+  int id_bits;
   GS_HD void operator()(Index i) const {
-    keys[i] = (std::uint64_t(grid.linear(grid.coord(position[i]))) << 32) | id[i];
+    const std::uint64_t cell = std::uint64_t(grid.linear(grid.coord(position[i])));
+    keys[i] = id_bits == 0 ? cell : (cell << id_bits) | id[i];
     values[i] = i;
   }
 };
@@ -56,9 +61,10 @@ struct CellBeginsByParticle {
   Index n;
   std::int64_t cells;
   Index* cell_begin;
+  int id_bits;  // CellKeys'
   GS_HD void operator()(Index k) const {
-    const std::int64_t first = k == 0 ? 0 : std::int64_t(keys[k - 1] >> 32) + 1;
-    const std::int64_t last = k == n ? cells : std::int64_t(keys[k] >> 32);
+    const std::int64_t first = k == 0 ? 0 : std::int64_t(keys[k - 1] >> id_bits) + 1;
+    const std::int64_t last = k == n ? cells : std::int64_t(keys[k] >> id_bits);
     for (std::int64_t c = first; c <= last; ++c) cell_begin[c] = k;
   }
 };
@@ -69,8 +75,9 @@ struct CellBeginsByCell {
   const std::uint64_t* keys;
   Index n;
   Index* cell_begin;
+  int id_bits;  // CellKeys'
   GS_HD void operator()(Index c) const {
-    const std::uint64_t first_key = std::uint64_t(c) << 32;
+    const std::uint64_t first_key = std::uint64_t(c) << id_bits;
     Index lo = 0, hi = n;
     while (lo < hi) {
       const Index mid = lo + (hi - lo) / 2;
@@ -103,16 +110,20 @@ GS_HD GS_INLINE int neighbour_cells(const CellGrid& grid, int axis, int c, int o
 
 // Contact candidates of a particle from the cell list: every particle in the
 // 27 cells around the particle's cell, in a fixed order (dz, dy, dx) and, in
-// a cell, by ascending id (the list is sorted by (cell, id)). The cells of a
+// a cell, by ascending id on the CPU (the list is sorted by (cell, id)), in
+// memory order on a GPU (Exec::cell_keys_hold_ids). The cells of a
 // row that are consecutive in x are consecutive in the list, so they are
 // read as one range, in that same order. The particle itself is among them.
 struct CellCandidates {
   CellGrid grid;
-  const Index* sorted;      // particle indices in (cell, id) order
+  const Index* sorted;      // particle indices by cell (and id on the CPU)
   const Index* cell_begin;  // per cell + 1: cell c is sorted[cell_begin[c], cell_begin[c + 1])
 
-  template <class Visit>
-  GS_HD GS_INLINE void for_each(Index /*i*/, const Vec3d& xi, Visit& visit) const {
+  // visit_run(first, end) for each run of sorted[] that the 27 cells
+  // around xi hold: a row of cells consecutive in x is one run (all of them
+  // but across a periodic face).
+  template <class VisitRun>
+  GS_HD GS_INLINE void for_each_run(const Vec3d& xi, VisitRun& visit_run) const {
     const CellCoord c = grid.coord(xi);
     int xs[3], ys[3], zs[3];
     const int nx = neighbour_cells(grid, 0, c.x, xs), ny = neighbour_cells(grid, 1, c.y, ys),
@@ -120,15 +131,20 @@ struct CellCandidates {
     for (int a = 0; a < nz; ++a)
       for (int b = 0; b < ny; ++b) {
         const std::int64_t row = grid.linear(CellCoord{0, ys[b], zs[a]});
-        // Runs of cells consecutive in x (all of them but across a periodic face).
         for (int first = 0; first < nx;) {
           int last = first;
           while (last + 1 < nx && xs[last + 1] == xs[last] + 1) ++last;
-          const Index end = cell_begin[row + xs[last] + 1];
-          for (Index k = cell_begin[row + xs[first]]; k < end; ++k) visit(sorted[k]);
+          visit_run(cell_begin[row + xs[first]], cell_begin[row + xs[last] + 1]);
           first = last + 1;
         }
       }
+  }
+  template <class Visit>
+  GS_HD GS_INLINE void for_each(Index /*i*/, const Vec3d& xi, Visit& visit) const {
+    auto each = [&](Index first, Index end) {
+      for (Index k = first; k < end; ++k) visit(sorted[k]);
+    };
+    for_each_run(xi, each);
   }
 };
 
@@ -163,21 +179,22 @@ void build_cells(CellList& c, const Vec3d* position, const ParticleId* id, Index
   c.grid = grid;
   c.sorted.resize_discarding(std::size_t(n));  // both rewritten whole
   c.cell_begin.resize_discarding(std::size_t(grid.cell_count()) + 1);
-  const int key_bits = 32 + bits_needed(std::uint64_t(grid.cell_count() - 1));
+  const int id_bits = Exec::cell_keys_hold_ids ? 32 : 0;
+  const int key_bits = id_bits + bits_needed(std::uint64_t(grid.cell_count() - 1));
   const std::size_t storage_bytes = Exec::sort_storage_bytes(n, key_bits);
   const SortLayout at(n, storage_bytes);
   scratch.resize_discarding(at.total);
   unsigned char* base = scratch.data();
   SortPairs p{reinterpret_cast<std::uint64_t*>(base + at.keys), reinterpret_cast<std::uint64_t*>(base + at.keys_alt),
               c.sorted.data(), reinterpret_cast<Index*>(base + at.values_alt), n, key_bits};
-  Exec::parallel_for(n, CellKeys{position, id, grid, p.keys, p.values});
+  Exec::parallel_for(n, CellKeys{position, id, grid, p.keys, p.values, id_bits});
   Exec::sort_pairs(p, base + at.storage, storage_bytes);
   if (p.values != c.sorted.data() && n > 0)
     backend_copy(Exec::backend, c.sorted.data(), p.values, std::size_t(n) * sizeof(Index));
   if constexpr (Exec::cell_begins_by_particle)
-    Exec::parallel_for(n + 1, CellBeginsByParticle{p.keys, n, grid.cell_count(), c.cell_begin.data()});
+    Exec::parallel_for(n + 1, CellBeginsByParticle{p.keys, n, grid.cell_count(), c.cell_begin.data(), id_bits});
   else
-    Exec::parallel_for(Index(grid.cell_count() + 1), CellBeginsByCell{p.keys, n, c.cell_begin.data()});
+    Exec::parallel_for(Index(grid.cell_count() + 1), CellBeginsByCell{p.keys, n, c.cell_begin.data(), id_bits});
 }
 
 }  // namespace gs

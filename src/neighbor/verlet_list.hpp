@@ -29,8 +29,7 @@
 // docs/PERFORMANCE.md).
 // The GPU builds it in two passes over the cells (count; a scan turns the
 // counts into offsets; fill and sort each particle's entries in place:
-// ListCountKernel, ListFillKernel); only the total comes back to the host,
-// to size the list.
+// ListPass); only the total comes back to the host, to size the list.
 //
 // Its staleness, on one rank, is read one step late, so that the host never
 // waits for the device inside a step (ListWatch below; docs/DESIGN.md, "The
@@ -42,7 +41,9 @@
 #include <vector>
 
 #include "backend/device_array.hpp"
+#include "core/bits.hpp"
 #include "core/fault.hpp"
+#include "core/one_lane.hpp"
 #include "core/types.hpp"
 #include "core/vec3.hpp"
 #include "neighbor/cell_list.hpp"
@@ -85,6 +86,7 @@ struct VerletList {
   std::vector<std::vector<Index>> parts;  // per thread, while building (CPU)
   DeviceArray<unsigned char> scan_scratch;  // the count scan's (GPU), sized at its first use
   double skin = 0;
+  int lanes_setting = 1;  // GPU lanes per particle of the build's passes: force_lanes_setting() (0: by size)
   Index n_owned = 0, n_total = 0;  // the store's layout at the build
   bool valid = false;
 
@@ -122,7 +124,8 @@ struct WithinSkin {
 };
 
 // Orders a particle's neighbours out[0, n) by ascending id. Insertion sort: a
-// dozen entries, mostly in order already (a row of cells comes sorted by id).
+// dozen entries (on the CPU mostly in order already: a row of cells comes
+// sorted by id there).
 GS_HD GS_INLINE void sort_by_id(Index* out, Index n, const ParticleId* id) {
   for (Index a = 1; a < n; ++a) {
     const Index j = out[a];
@@ -226,39 +229,49 @@ struct ListWatch {
   }
 };
 
-// Counts particle i's neighbours into count[i + 1] (count[0] = 0): the GPU's
-// first pass, before the scan that turns the counts into offsets.
-struct ListCountKernel {
+// One pass of the GPU's build over owned particle i: its neighbours counted
+// into begin[i + 1] (Fill false; item 0 also sets begin[0] = 0), or, after
+// the scan of the counts into offsets, written to list[begin[i],
+// begin[i + 1]) and ordered by ascending id (Fill true). A small scene gives
+// each particle a group of lanes (in_group), as its force kernel does: lane
+// r tests candidates r, r + size, ... of each run of cells, and the
+// neighbours of a round are written in candidate order, after those of the
+// lanes before them; the leader orders them once all are written. The order
+// by id makes the list the one a thread alone writes. Elsewhere a particle
+// is one lane's.
+template <bool Fill>
+struct ListPass {
+  static constexpr int kMinBlocksPerSM = 4;  // a launch hint, as the force kernel's
   CellCandidates cells;
   WithinSkin near;
-  ListOffset* count;
-  GS_HD void operator()(Index i) const {
-    const Vec3d xi = near.position[i];
-    ListOffset n = 0;
-    auto tally = [&](Index j) { n += near(i, j, xi) ? 1 : 0; };
-    cells.for_each(i, xi, tally);
-    count[i + 1] = n;
-    if (i == 0) count[0] = 0;
-  }
-};
+  const ParticleId* id;  // Fill only
+  ListOffset* begin;
+  Index* list;  // Fill only
+  GS_HD void operator()(Index i) const { in_group(i, OneLane{}); }
 
-// Writes particle i's neighbours to list[begin[i], begin[i + 1]) and orders
-// them by ascending id: the GPU's second pass, over the same cells.
-struct ListFillKernel {
-  CellCandidates cells;
-  WithinSkin near;
-  const ParticleId* id;
-  const ListOffset* begin;
-  Index* list;
-  GS_HD void operator()(Index i) const {
+  template <class Group>
+  GS_HD void in_group(Index i, const Group& g) const {
     const Vec3d xi = near.position[i];
-    Index* out = list + begin[i];
-    Index n = 0;
-    auto append = [&](Index j) {
-      if (near(i, j, xi)) out[n++] = j;
+    ListOffset k = Fill ? begin[i] : 0;
+    auto run = [&](Index first, Index end) {
+      for (Index round = first; round < end; round += Index(g.size)) {
+        const Index c = round + Index(g.rank);
+        const bool hit = c < end && near(i, cells.sorted[c], xi);
+        const unsigned votes = g.ballot(hit);
+        if constexpr (Fill) {
+          if (hit) list[k + ListOffset(bit_count(votes & ((1u << g.rank) - 1u)))] = cells.sorted[c];
+        }
+        k += ListOffset(bit_count(votes));
+      }
     };
-    cells.for_each(i, xi, append);
-    sort_by_id(out, n, id);
+    cells.for_each_run(xi, run);
+    if constexpr (Fill) {
+      g.sync();
+      if (g.leader()) sort_by_id(list + begin[i], Index(k - begin[i]), id);
+    } else if (g.leader()) {
+      if (i == 0) begin[0] = 0;
+      begin[i + 1] = k;
+    }
   }
 };
 

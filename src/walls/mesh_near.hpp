@@ -16,6 +16,7 @@
 
 #include "core/bits.hpp"
 #include "core/hd.hpp"
+#include "core/one_lane.hpp"
 #include "core/types.hpp"
 #include "core/vec3.hpp"
 #include "neighbor/verlet_list.hpp"
@@ -32,15 +33,6 @@ GS_HD GS_INLINE double near_reach(double radius, double skin) { return (radius +
 struct MeshNearView {
   const ListOffset* begin = nullptr;  // per owned particle + 1
   const std::int32_t* triangles = nullptr;
-};
-
-// A group of one lane (a host thread, or a GPU thread alone): the lane
-// group's interface (backend/cuda/lane_group.cuh) where nothing is shared.
-struct OneLane {
-  static constexpr int size = 1;
-  static constexpr int rank = 0;
-  GS_HD static bool leader() { return true; }
-  GS_HD static unsigned ballot(bool vote) { return vote ? 1u : 0u; }
 };
 
 // One pass of the build over particle i: the count into begin[i + 1] (Fill

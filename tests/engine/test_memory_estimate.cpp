@@ -12,6 +12,7 @@
 
 #include "backend/memory.hpp"
 #include "engine/memory_estimate.hpp"
+#include "scene/particle_sources.hpp"
 #include "support/support.hpp"
 
 namespace gs::test {
@@ -61,11 +62,15 @@ TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   EXPECT_EQ(m.rebuild_bytes, 4 + 4);
   EXPECT_EQ(m.bytes_per_particle, 90 + 24 + 220 + 68 + 192 + 8);
   EXPECT_EQ(m.cpu_pair_bytes, 12 * kCpuPairEntry);
+  // A small scene's GPU run keeps the last build's tables: offsets 4, 12
+  // entries of an index and a pair entry (4 + 13), origin and kept offsets 8.
+  EXPECT_EQ(m.gpu_kept_bytes, double(particle_count(lattice_scene(2, kFriction))) * (4 + 12 * 17 + 8));
   const MemoryEstimate none = estimate_memory(lattice_scene(2, 0));
   EXPECT_EQ(none.history_bytes, 0);
   EXPECT_EQ(none.force_bytes, 12);  // no torque without friction
   EXPECT_EQ(none.field_bytes, 90 - 24);  // nor a spin
   EXPECT_EQ(none.bytes_per_particle, 66 + 12 + 68 + 24);
+  EXPECT_EQ(none.gpu_kept_bytes, 0);  // no pair tables to keep
   SceneSpec spinning = lattice_scene(2, 0);
   spinning.particles.front().angular_velocity = {0, 0, 1};
   EXPECT_EQ(estimate_memory(spinning).field_bytes, 90);  // a sphere that starts spinning keeps its spin

@@ -14,6 +14,7 @@
 
 #include "backend/cpu/cpu_exec.hpp"
 #include "support/support.hpp"
+#include "support/thread_lanes.hpp"
 
 namespace gs::test {
 namespace {
@@ -84,6 +85,103 @@ TEST(VerletList, HoldsExactlyThePairsWithinTheSkinInIdOrder) {
   }
   EXPECT_GT(pairs, 3000);  // a test with neighbours to find, of both sizes
   EXPECT_GT(large_small, 300);
+}
+
+// A GPU's cell sort keys the cells alone (CudaExec::cell_keys_hold_ids): a
+// cell's particles then come in memory order, not by id. The cells and the
+// list built that way on the CPU: every particle in its cell's range, and
+// the list the one from keys with ids.
+struct CpuExecCellsAlone : CpuExec {
+  static constexpr bool cell_keys_hold_ids = false;
+};
+
+TEST(VerletList, CellKeysWithoutIdsGiveTheSameList) {
+  const double box = 0.012, skin = 0.0002;
+  const Cloud c = random_cloud(6000, box, 9);
+  const Index n = Index(c.position.size());
+  BuiltList with_ids;
+  build(with_ids, c, n, skin, box);
+  BuiltList alone;
+  alone.position.from_host(c.position);
+  alone.radius.from_host(c.radius);
+  alone.id.from_host(c.id);
+  const CellGrid grid = make_cell_grid({0, 0, 0}, {box, box, box}, 2 * kLarge + skin);
+  build_cells<CpuExecCellsAlone>(alone.cells, alone.position.data(), alone.id.data(), n, grid, alone.scratch);
+  const std::vector<Index> sorted = alone.cells.sorted.to_host();
+  const std::vector<Index> begin = alone.cells.cell_begin.to_host();
+  for (std::int64_t cell = 0; cell < grid.cell_count(); ++cell)
+    for (Index k = begin[std::size_t(cell)]; k < begin[std::size_t(cell) + 1]; ++k) {
+      const Index i = sorted[std::size_t(k)];
+      ASSERT_EQ(grid.linear(grid.coord(c.position[std::size_t(i)])), cell) << "particle " << i;
+      if (k > begin[std::size_t(cell)]) {
+        EXPECT_LT(sorted[std::size_t(k) - 1], i) << "a cell in memory order";
+      }
+    }
+  EXPECT_EQ(begin.back(), n);
+  build_verlet_list<CpuExecCellsAlone>(alone.list, alone.cells, alone.position.data(), alone.radius.data(),
+                                       alone.id.data(), n, n, skin);
+  EXPECT_EQ(alone.list.begin.to_host(), with_ids.list.begin.to_host());
+  EXPECT_EQ(alone.list.list.to_host(), with_ids.list.list.to_host());
+}
+
+// The GPU's two passes (ListPass: count, then fill and order), by one
+// thread and by groups of lanes (host threads playing them:
+// support/thread_lanes.hpp), write the CPU's list. A jittered lattice of
+// two sizes and a wide skin gives each sphere up to 80 candidates in its
+// cells, about eight of them neighbours: several rounds of lanes, several
+// neighbours in a round.
+TEST(VerletList, GpuPassesInLaneGroupsWriteTheListOfOneThread) {
+  const int side = 12;
+  const double pitch = 0.00105, skin = 0.0005, box = side * pitch;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> jitter(-0.1 * pitch, 0.1 * pitch);
+  Cloud c;
+  for (int k = 0; k < side * side * side; ++k) {
+    c.position.push_back({(k % side + 0.5) * pitch + jitter(rng), (k / side % side + 0.5) * pitch + jitter(rng),
+                          (k / side / side + 0.5) * pitch + jitter(rng)});
+    c.radius.push_back(float(k % 3 == 0 ? 0.0005 : 0.00045));
+    c.id.push_back(ParticleId(k));
+  }
+  std::shuffle(c.id.begin(), c.id.end(), rng);
+  const Index n = Index(c.position.size());
+  BuiltList b;
+  b.position.from_host(c.position);
+  b.radius.from_host(c.radius);
+  b.id.from_host(c.id);
+  const CellGrid grid = make_cell_grid({0, 0, 0}, {box, box, box}, 0.001 + skin);
+  build_cells<CpuExec>(b.cells, b.position.data(), b.id.data(), n, grid, b.scratch);
+  build_verlet_list<CpuExec>(b.list, b.cells, b.position.data(), b.radius.data(), b.id.data(), n, n, skin);
+  const std::vector<ListOffset> expected_begin = b.list.begin.to_host();
+  const std::vector<Index> expected = b.list.list.to_host();
+  ASSERT_GT(expected.size(), std::size_t(6) * std::size_t(n));  // neighbours to find: about 8 a sphere
+
+  const CellCandidates cells{b.cells.grid, b.cells.sorted.data(), b.cells.cell_begin.data()};
+  const WithinSkin near{b.position.data(), b.radius.data(), skin, grid.box};
+  std::vector<ListOffset> begin(std::size_t(n) + 1, 0);
+  std::vector<Index> list(expected.size(), -1);
+  const ListPass<false> count{cells, near, b.id.data(), begin.data(), nullptr};
+  const ListPass<true> fill{cells, near, b.id.data(), begin.data(), list.data()};
+  for (Index i = 0; i < n; ++i) count(i);  // one thread a sphere
+  for (Index i = 0; i < n; ++i) begin[std::size_t(i) + 1] += begin[std::size_t(i)];
+  ASSERT_EQ(begin, expected_begin);
+  for (Index i = 0; i < n; ++i) fill(i);
+  ASSERT_EQ(list, expected);
+
+  for (int lanes : {2, 8, 32})
+    for (Index i = 0; i < n; i += 7) {
+      const std::size_t row = std::size_t(expected_begin[std::size_t(i)]);
+      const std::size_t end = std::size_t(expected_begin[std::size_t(i) + 1]);
+      std::fill(list.begin() + std::ptrdiff_t(row), list.begin() + std::ptrdiff_t(end), -1);
+      const ListOffset counted = begin[std::size_t(i) + 1];
+      begin[std::size_t(i) + 1] = 12345;
+      test::run_lanes(lanes, [&](const test::ThreadLane& lane) { count.in_group(i, lane); });
+      EXPECT_EQ(begin[std::size_t(i) + 1], ListOffset(end - row)) << lanes << " lanes, sphere " << i;
+      begin[std::size_t(i) + 1] = counted;
+      test::run_lanes(lanes, [&](const test::ThreadLane& lane) { fill.in_group(i, lane); });
+      EXPECT_TRUE(std::equal(list.begin() + std::ptrdiff_t(row), list.begin() + std::ptrdiff_t(end),
+                             expected.begin() + std::ptrdiff_t(row)))
+          << lanes << " lanes, sphere " << i;
+    }
 }
 
 // The list keeps the positions it was built on; the kick-drift's check

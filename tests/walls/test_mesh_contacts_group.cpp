@@ -1,103 +1,38 @@
 // for_each_mesh_contact_in_group (walls/sphere_triangle_group.hpp), which a
 // GPU runs with a group of lanes per sphere, must find the contacts that
 // for_each_mesh_contact_in finds on one thread, in the same order and with
-// the same bits. Here threads play the lanes: a vote waits until every lane of
-// the group has voted, as the warp's ballot does, so any group size runs the
-// algorithm as the GPU would.
+// the same bits. Here threads play the lanes (support/thread_lanes.hpp), so
+// any group size runs the algorithm as the GPU would.
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <condition_variable>
 #include <cstdint>
 #include <cstring>
-#include <mutex>
 #include <random>
 #include <thread>
 #include <type_traits>
 #include <vector>
 
 #include "mesh_test_helpers.hpp"
+#include "support/thread_lanes.hpp"
 #include "walls/impeller.hpp"
 #include "walls/sphere_triangle_group.hpp"
 
 namespace gs {
 namespace {
 
-// What the lanes of one group share: their votes, their shuffled values and a barrier.
-class Votes {
- public:
-  explicit Votes(int lanes) : votes_(std::size_t(lanes)), values_(std::size_t(lanes)), lanes_(lanes) {}
-  // Every lane's vote, once all have voted; each lane calls it equally often.
-  unsigned ballot(int rank, bool vote) {
-    votes_[std::size_t(rank)] = vote;
-    wait();
-    unsigned bits = 0;
-    for (int r = 0; r < lanes_; ++r) bits |= unsigned(votes_[std::size_t(r)]) << r;
-    wait();  // nobody votes again before everyone has read this round
-    return bits;
-  }
-  // Lane `from`'s v, once all lanes have given theirs; each lane calls it equally often.
-  template <class T>
-  T shuffle(int rank, T v, int from) {
-    static_assert(sizeof(T) <= sizeof(std::uint64_t) && std::is_trivially_copyable_v<T>, "one register's worth");
-    std::memcpy(&values_[std::size_t(rank)], &v, sizeof v);
-    wait();
-    T out;
-    std::memcpy(&out, &values_[std::size_t(from)], sizeof out);
-    wait();
-    return out;
-  }
-
- private:
-  void wait() {
-    std::unique_lock<std::mutex> lock(mutex_);
-    const long long round = round_;
-    if (++arrived_ == lanes_) {
-      arrived_ = 0;
-      ++round_;
-      all_.notify_all();
-    } else {
-      all_.wait(lock, [&] { return round_ != round; });
-    }
-  }
-  std::vector<char> votes_;
-  std::vector<std::uint64_t> values_;
-  int lanes_;
-  int arrived_ = 0;
-  long long round_ = 0;
-  std::mutex mutex_;
-  std::condition_variable all_;
-};
-
-struct ThreadLane {
-  int size;
-  int rank;
-  Votes* votes;
-  bool leader() const { return rank == 0; }
-  unsigned ballot(bool vote) const { return votes->ballot(rank, vote); }
-  template <class T>
-  T shuffle(T v, int from) const {
-    return votes->shuffle(rank, v, from);
-  }
-};
-
 // The contacts of the sphere (x, radius) with list[0..count), found by a group
 // of `lanes` threads; what lane 0 visits.
 std::vector<MeshContact> group_contacts(const MeshView& m, const std::vector<std::int32_t>& list, const Vec3d& x,
                                         double radius, int lanes) {
-  Votes votes(lanes);
   std::vector<MeshContact> out;
-  std::vector<std::thread> threads;
-  for (int rank = 0; rank < lanes; ++rank)
-    threads.emplace_back([&, rank] {
-      const ThreadLane lane{lanes, rank, &votes};
-      auto collect = [&](const MeshContact& c) {
-        EXPECT_TRUE(lane.leader()) << "lane " << rank << " visited a contact";
-        out.push_back(c);
-      };
-      for_each_mesh_contact_in_group(m, list.data(), std::int32_t(list.size()), x, radius, lane, collect);
-    });
-  for (std::thread& t : threads) t.join();
+  test::run_lanes(lanes, [&](const test::ThreadLane& lane) {
+    auto collect = [&](const MeshContact& c) {
+      EXPECT_TRUE(lane.leader()) << "lane " << lane.rank << " visited a contact";
+      out.push_back(c);
+    };
+    for_each_mesh_contact_in_group(m, list.data(), std::int32_t(list.size()), x, radius, lane, collect);
+  });
   return out;
 }
 
@@ -184,21 +119,16 @@ TEST(MeshContactsGroup, LanesAgreeOnTheNearestReport) {
       const std::int32_t one = nearest.t;
       ASSERT_GE(one, 0);
       for (int lanes : {2, 4, 8, 16, 32}) {
-        Votes votes(lanes);
         std::vector<std::int32_t> found(std::size_t(lanes), -2);
-        std::vector<std::thread> threads;
-        for (int rank = 0; rank < lanes; ++rank)
-          threads.emplace_back([&, rank] {
-            const ThreadLane lane{lanes, rank, &votes};
-            NearestReport own;  // this lane's share of the list, as the group scan deals it
-            for (std::size_t k = std::size_t(rank); k < list.size(); k += std::size_t(lanes)) {
-              const ClosestPoint c = triangle_closest_point(m, list[k], x);
-              if (c.distance < radius) own.consider(c.distance, c.feature, list[k]);
-            }
-            nearest_over_group(lane, own);
-            found[std::size_t(rank)] = own.t;
-          });
-        for (std::thread& t : threads) t.join();
+        test::run_lanes(lanes, [&](const test::ThreadLane& lane) {
+          NearestReport own;  // this lane's share of the list, as the group scan deals it
+          for (std::size_t k = std::size_t(lane.rank); k < list.size(); k += std::size_t(lanes)) {
+            const ClosestPoint c = triangle_closest_point(m, list[k], x);
+            if (c.distance < radius) own.consider(c.distance, c.feature, list[k]);
+          }
+          nearest_over_group(lane, own);
+          found[std::size_t(lane.rank)] = own.t;
+        });
         for (int rank = 0; rank < lanes; ++rank)
           EXPECT_EQ(found[std::size_t(rank)], one) << lanes << " lanes, lane " << rank << ", r " << r;
       }

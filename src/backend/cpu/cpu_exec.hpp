@@ -19,6 +19,10 @@ struct CpuExec {
   static constexpr HistoryOrder history_order = HistoryOrder::particle_major;
   // Cell offsets in one O(n + cells) walk over the sorted particles.
   static constexpr bool cell_begins_by_particle = true;
+  // The cell sort's keys hold the ids too: a cell's particles come in id
+  // order, which the list's per-row sort by id then finds done (the sort
+  // itself passes only over the bits in which keys differ).
+  static constexpr bool cell_keys_hold_ids = true;
   // Contacts from a Verlet list (neighbor/verlet_list.hpp says why).
   static constexpr bool verlet_list = true;
   // Each touching pair's law once for both spheres, in a first pass over the

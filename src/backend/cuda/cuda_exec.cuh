@@ -44,11 +44,14 @@ __global__ void __launch_bounds__(kCudaBlock, MinBlocks) for_each_group_kernel(I
   if (i < n) f.in_group(i, LaneGroup(lanes));
 }
 
-// Sets *flag where pred(i) holds for some i in [0, n) (any thread's store wins).
-template <class P>
-__global__ void any_kernel(Index n, P pred, int* flag) {
+// What a scan of counts into offsets begin[0, n] came to, for one read-back:
+// out[0] = 1 where it wrapped past 2^32 (OffsetsWrapped: any thread's store
+// wins; out[0] is zeroed before), out[1] the total.
+template <class Wrapped>
+__global__ void scan_outcome_kernel(Index n, Wrapped wrapped, ListOffset* out) {
   const Index i = Index(blockIdx.x) * Index(blockDim.x) + Index(threadIdx.x);
-  if (i < n && pred(i)) *flag = 1;
+  if (i < n && wrapped(i)) out[0] = 1;
+  if (i == n - 1) out[1] = wrapped.begin[n];
 }
 
 template <class F, class = void>
@@ -67,6 +70,11 @@ struct CudaExec {
   static constexpr HistoryOrder history_order = HistoryOrder::slot_major;
   // Cell offsets one thread per cell, so no thread walks a long empty stretch.
   static constexpr bool cell_begins_by_particle = false;
+  // The cell sort's keys are the cells alone: CUB passes over every key bit
+  // up to the highest (8 a pass), and ids would add 32 bits, four of mixer
+  // case a's six passes. Each row of the Verlet list is sorted by id anyway
+  // (ListPass), so no result depends on a cell's order.
+  static constexpr bool cell_keys_hold_ids = false;
   // Contacts from a Verlet list (neighbor/verlet_list.hpp says why).
   static constexpr bool verlet_list = true;
   // Each thread computes its particle's side of every pair (CpuExec::pairs_once):
@@ -138,33 +146,35 @@ struct CudaExec {
   // Turns counts begin[1, n] into offsets (an in-place inclusive sum; begin[0]
   // = 0 is the caller's) with CUB's storage in `scratch`, and returns the
   // total (read back: a build waits for the device anyway). A total of 2^32
-  // or more wraps past 32-bit offsets: refused, naming `what`; a null `what`
-  // skips that check (one more wait), for a caller that bounded the total.
+  // or more wraps past 32-bit offsets: refused, naming `what` (the check's
+  // flag comes back with the total, in one read); a null `what` skips the
+  // check's kernel, for a caller that bounded the total.
   static ListOffset scan_counts(ListOffset* begin, Index n, DeviceArray<unsigned char>& scratch, const char* what) {
     if (n <= 0) return 0;
     std::size_t bytes = 0;
     GS_CUDA_CHECK(cub::DeviceScan::InclusiveSum(nullptr, bytes, begin + 1, begin + 1, n));
-    constexpr std::size_t kFlagBytes = 256;  // the wrap flag first, CUB's storage aligned after it
-    scratch.resize_discarding(kFlagBytes + bytes);
-    int* wrapped = reinterpret_cast<int*>(scratch.data());
-    GS_CUDA_CHECK(cub::DeviceScan::InclusiveSum(scratch.data() + kFlagBytes, bytes, begin + 1, begin + 1, n));
+    constexpr std::size_t kOutcomeBytes = 256;  // the outcome first, CUB's storage aligned after it
+    scratch.resize_discarding(kOutcomeBytes + bytes);
+    ListOffset* outcome = reinterpret_cast<ListOffset*>(scratch.data());
+    GS_CUDA_CHECK(cub::DeviceScan::InclusiveSum(scratch.data() + kOutcomeBytes, bytes, begin + 1, begin + 1, n));
+    ListOffset read[2] = {0, 0};  // wrapped, total
     if (what != nullptr) {
-      GS_CUDA_CHECK(cudaMemset(wrapped, 0, sizeof(int)));
-      any_kernel<<<unsigned((n + kBlock - 1) / kBlock), kBlock>>>(n, OffsetsWrapped{begin}, wrapped);
+      GS_CUDA_CHECK(cudaMemsetAsync(outcome, 0, sizeof(ListOffset), 0));
+      scan_outcome_kernel<<<unsigned((n + kBlock - 1) / kBlock), kBlock>>>(n, OffsetsWrapped{begin}, outcome);
       GS_CUDA_CHECK(cudaGetLastError());
-      int wrap = 0;
-      GS_CUDA_CHECK(cudaMemcpy(&wrap, wrapped, sizeof(int), cudaMemcpyDeviceToHost));
-      if (wrap != 0) throw std::runtime_error(std::string(what) + " would hold 2^32 entries or more (32-bit offsets)");
+      GS_CUDA_CHECK(cudaMemcpy(read, outcome, sizeof read, cudaMemcpyDeviceToHost));
+      if (read[0] != 0) throw std::runtime_error(std::string(what) + " would hold 2^32 entries or more (32-bit offsets)");
+    } else {
+      GS_CUDA_CHECK(cudaMemcpy(&read[1], begin + n, sizeof(ListOffset), cudaMemcpyDeviceToHost));
     }
-    ListOffset total = 0;
-    GS_CUDA_CHECK(cudaMemcpy(&total, begin + n, sizeof(ListOffset), cudaMemcpyDeviceToHost));
-    return total;
+    return read[1];
   }
 
   // Fills v.begin and v.list: the neighbours of particles [0, n_owned) among
   // `cells`, each particle's in ascending id. Two passes over the cells
-  // (count, fill) around an in-place inclusive scan of the counts; the total
-  // comes back to the host to size the list.
+  // (count, fill; ListPass, with as many lanes per particle as the forces
+  // take) around an in-place inclusive scan of the counts; the total comes
+  // back to the host to size the list.
   static void fill_verlet_list(VerletList& v, const CellCandidates& cells, const WithinSkin& near,
                                const ParticleId* id, Index n_owned) {
     v.begin.resize(std::size_t(n_owned) + 1);
@@ -174,10 +184,10 @@ struct CudaExec {
       v.list.resize(0);
       return;
     }
-    parallel_for(n_owned, ListCountKernel{cells, near, begin});
+    parallel_for_lanes(n_owned, v.lanes_setting, ListPass<false>{cells, near, id, begin, nullptr});
     const ListOffset total = scan_counts(begin, n_owned, v.scan_scratch, "the Verlet list");
     v.list.resize_discarding(std::size_t(total));  // rewritten whole: no copy of the old
-    parallel_for(n_owned, ListFillKernel{cells, near, id, begin, v.list.data()});
+    parallel_for_lanes(n_owned, v.lanes_setting, ListPass<true>{cells, near, id, begin, v.list.data()});
   }
 
   static void synchronize() { GS_CUDA_CHECK(cudaDeviceSynchronize()); }

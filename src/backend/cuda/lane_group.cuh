@@ -19,6 +19,8 @@ struct LaneGroup {
     mask = (lanes == 32 ? 0xffffffffu : (1u << lanes) - 1u) << first;
   }
   __device__ bool leader() const { return rank == 0; }
+  // Waits for the group's lanes; what each wrote before is then seen by all.
+  __device__ void sync() const { __syncwarp(mask); }
   // Bit r set where lane r of the group votes true; the same on every lane.
   __device__ unsigned ballot(bool vote) const { return (__ballot_sync(mask, vote) & mask) >> first; }
   template <class T>
