@@ -110,6 +110,13 @@ def scene(case, revolutions, froude, stiffness_scale, settle, suffix, layers=1, 
     slots = (f"contact_slots: 24            # the fill's impacts press spheres about {100 * impact:.0f} % of a diameter deep\n"
              if deep else "")
     fraction = DEEP_TIME_STEP_FRACTION if deep else TIME_STEP_FRACTION
+    # Case a's few spheres rebuild their lists every dozen steps at the
+    # default skin, and a build costs a small scene more than its longer
+    # rows: case a soft turning ran 69-70 us a step at 0.3 against 74-76 at
+    # 0.1 on one H100, and 4 % faster on one CPU thread (docs/PERFORMANCE.md,
+    # "A CUDA timeline of mixer case a's step"); case b's one lane per sphere
+    # ran slower at 0.3. No result depends on the skin.
+    skin = "verlet_skin: 0.3             # fewer list builds: see tools/make_mixer_cases.py\n" if case == "a" else ""
     fraction_note = f"          # {100 * impact:.0f} % overlaps: see tools/make_mixer_cases.py" if deep else ""
     duration = settle + revolutions * period
     # Snapshots at multiples of the settling time, so one lands on the marking;
@@ -130,7 +137,7 @@ domain: {{min: [{-0.052 * s:g}, {-0.052 * s:g}, {s * (FLOOR - 0.001):g}], max: [
 gravity: [0, 0, -9.81]
 contact_model: linear
 precision: fp32
-{slots}effects: {{friction: true, rolling_resistance: false, cohesion: false}}
+{slots}{skin}effects: {{friction: true, rolling_resistance: false, cohesion: false}}
 
 materials:
   - {{name: glass, density: {DENSITY:g}}}
