@@ -14,13 +14,12 @@
 #  2. A 1e5-particle bed: settle_bench (a lattice pressed 0.5 % into overlap,
 #     frictional, fp32 forces, settling and loosening as it runs) with each
 #     build: its wall time per step and particle-steps/s.
-#  3. Where nsys is on PATH: the mixer restart profiled (CUDA API trace) for
-#     PROFILE_STEPS and twice as many steps with each build; the difference
-#     of the two, per step, for the synchronising calls and launches
-#     (cudaDeviceSynchronize, cudaStreamSynchronize, cudaEventSynchronize,
-#     cudaMemcpy, cudaMemcpyAsync, cudaLaunchKernel), so set-up drops out.
-# Everything goes to $OUT (default ./small_scene_out): summary.txt, logs, nsys
-# reports and their cuda_api_sum CSVs.
+#  3. A CUDA timeline of PROFILE_STEPS mixer steps from each build's
+#     checkpoint (bench/gpu_trace.sh, a CUPTI tracer, and
+#     bench/gpu_timeline.py): per step the kernels, the device's idle gaps
+#     and the host's API calls, over the second half of the steps.
+# Everything goes to $OUT (default ./small_scene_out): summary.txt, logs,
+# the traces and their timelines.
 set -uo pipefail
 if (($# != 2)); then
   echo "usage: [OUT=dir] bench/small_scene.sh BUILD BASE_BUILD" >&2
@@ -110,51 +109,21 @@ for round in $(seq 1 "$rounds"); do
   done
 done
 
-# 3. CUDA API calls per step (nsys).
-if ! command -v nsys > /dev/null; then
-  say "nsys not on PATH: no API counts"
+# 3. A CUDA timeline of the mixer's steps with each build (bench/gpu_trace.sh,
+# CUPTI; Nsight Systems is not on every GPU machine): per step the kernels,
+# the device's idle gaps and the host's API calls, and one rebuild step in order.
+if [[ $backend != cuda ]]; then
   exit 0
 fi
-if ! ls "$work"/settle_base/checkpoint_*.h5 "$work"/settle_new/checkpoint_*.h5 > /dev/null 2>&1; then
-  say "no mixer checkpoints: no API counts"
-  exit 0
-fi
-say "== CUDA API calls per mixer step (nsys, difference of $profile_steps and $((2 * profile_steps)) steps)"
-api_csv() {  # LABEL BUILD STEPS -> the cuda_api_sum CSV's path
-  local name=$OUT/nsys_${1}_$3 checkpoint
-  checkpoint=$(ls "$work/settle_$1"/checkpoint_*.h5 | tail -1)
-  rm -rf "$work/nsys_$1"
-  (cd "$mixer_dir" && nsys profile --trace=cuda --sample=none --cpuctxsw=none --force-overwrite=true -o "$name" \
-     "$2/src/grainstorm" run "$scene" --backend "$backend" --restart "$checkpoint" --steps $((settle_steps + $3)) \
-     --out "$work/nsys_$1" > "$name.log" 2>&1)
-  # The report's name changed between nsys versions.
-  nsys stats --report cuda_api_sum --format csv --force-export=true --output "$name" "$name.nsys-rep" \
-    > /dev/null 2>&1 ||
-    nsys stats --report cudaapisum --format csv --force-export=true --output "$name" "$name.nsys-rep" > /dev/null 2>&1
-  ls "$name"_*api*sum*.csv 2>/dev/null | head -1
-}
+say "== CUDA timeline of $profile_steps mixer steps (bench/gpu_trace.sh, bench/gpu_timeline.py)"
 for label in base new; do
   b=$build; [[ $label == base ]] && b=$base
-  short=$(api_csv "$label" "$b" "$profile_steps")
-  long=$(api_csv "$label" "$b" $((2 * profile_steps)))
-  if [[ -z $short || -z $long ]]; then
-    say "$label: nsys gave no API summary (see $OUT/nsys_${label}_*.log)"; continue
-  fi
-  python3 - "$short" "$long" "$profile_steps" "$label" <<'PY' | tee -a "$summary"
-import csv, sys
-short, long, steps, label = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
-def calls(path):
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    out = {}
-    for r in rows:
-        name = r.get("Name", "")
-        count = r.get("Num Calls", r.get("Calls", "0"))
-        out[name.split("_v")[0]] = out.get(name.split("_v")[0], 0) + int(count.replace(",", ""))
-    return out
-a, b = calls(short), calls(long)
-names = ["cudaDeviceSynchronize", "cudaStreamSynchronize", "cudaEventSynchronize", "cudaMemcpy",
-         "cudaMemcpyAsync", "cudaMemsetAsync", "cudaMemset", "cudaLaunchKernel", "cudaEventRecord"]
-print(label + ": per step: " + ", ".join(f"{n} {(b.get(n, 0) - a.get(n, 0)) / steps:.3f}" for n in names))
-PY
+  checkpoint=$(ls "$work/settle_$label"/checkpoint_*.h5 2>/dev/null | tail -1)
+  [[ -n $checkpoint ]] || { say "$label: no mixer checkpoint: no timeline"; continue; }
+  rm -rf "$work/trace_$label"
+  (cd "$mixer_dir" && TRACE="$OUT/trace_$label.csv" "$root/bench/gpu_trace.sh" "$b/src/grainstorm" run "$scene" \
+     --backend cuda --restart "$checkpoint" --steps $((settle_steps + profile_steps)) --out "$work/trace_$label" \
+     > "$OUT/trace_$label.log" 2>&1)
+  python3 "$root/bench/gpu_timeline.py" "$OUT/trace_$label.csv" --detail ListPass > "$OUT/timeline_$label.txt" 2>&1
+  say "$label: $(head -1 "$OUT/timeline_$label.txt") (timeline_$label.txt)"
 done

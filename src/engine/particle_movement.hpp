@@ -64,13 +64,14 @@ class ParticleMovement {
   }
   // The owned particles to the host, row r from store index order[r] (a
   // backend array of n_owned indices; null: store order): every kept
-  // particle field, the forces and torques in fp64 (zero torques where no
-  // effect makes them) and, in runs with contact history, each particle's
-  // contacts (occupied slots; output needs these, not the whole history).
-  // Each field is put in order on the backend and copied once; `into`'s
-  // arrays keep their memory from call to call, `pins` page-locks them.
-  virtual void owned_to_host(const ParticleStore& s, const Index* order, ParticleSnapshot& into,
-                             HostPins& pins) const = 0;
+  // particle field, with_forces the forces and torques in fp64 (zero torques
+  // where no effect makes them; else both left empty) and, in runs with
+  // contact history, each particle's contacts (occupied slots; output needs
+  // these, not the whole history). Each field is put in order on the
+  // backend and copied once; `into`'s arrays keep their memory from call to
+  // call, `pins` page-locks them.
+  virtual void owned_to_host(const ParticleStore& s, const Index* order, ParticleSnapshot& into, HostPins& pins,
+                             bool with_forces) const = 0;
   // The same for the contact history (empty rows without history).
   virtual void history_to_host(const ParticleStore& s, const Index* order, HostHistory& into, HostPins& pins) const = 0;
   // Ids and history rows (store order) of the owned particles with a stored

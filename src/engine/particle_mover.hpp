@@ -65,7 +65,8 @@ class ParticleMover final : public ParticleMovement {
     if (!st_.torque) return std::vector<Vec3d>(s.n_owned);
     return widened(st_.forces.torque, s.n_owned);
   }
-  void owned_to_host(const ParticleStore& s, const Index* order, ParticleSnapshot& into, HostPins& pins) const override;
+  void owned_to_host(const ParticleStore& s, const Index* order, ParticleSnapshot& into, HostPins& pins,
+                     bool with_forces) const override;
   void history_to_host(const ParticleStore& s, const Index* order, HostHistory& into, HostPins& pins) const override;
   ParticleRecords wall_contact_history(const ParticleStore& s) const override;
 

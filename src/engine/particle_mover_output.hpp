@@ -70,7 +70,7 @@ void field_to_host(const DeviceArray<T>& a, const Index* order, Index n, std::ve
 
 template <class Exec, class Real>
 void ParticleMover<Exec, Real>::owned_to_host(const ParticleStore& s, const Index* order, ParticleSnapshot& into,
-                                              HostPins& pins) const {
+                                              HostPins& pins, bool with_forces) const {
   const Index n = s.n_owned;
   DeviceArray<unsigned char>& staging = st_.staging;
   for_each_particle_field_bit(into, [&](const char*, unsigned bit, auto& field) {
@@ -83,12 +83,17 @@ void ParticleMover<Exec, Real>::owned_to_host(const ParticleStore& s, const Inde
     pins.resize(Exec::backend, into.angular_velocity, std::size_t(n));
     std::fill(into.angular_velocity.begin(), into.angular_velocity.end(), Vec3d{});
   }
-  field_to_host<Exec>(st_.forces.force, order, n, into.force, pins, staging);
-  if (st_.torque) {
-    field_to_host<Exec>(st_.forces.torque, order, n, into.torque, pins, staging);
-  } else {
-    pins.resize(Exec::backend, into.torque, std::size_t(n));
-    std::fill(into.torque.begin(), into.torque.end(), Vec3d{});  // no effect makes torques
+  if (with_forces) {
+    field_to_host<Exec>(st_.forces.force, order, n, into.force, pins, staging);
+    if (st_.torque) {
+      field_to_host<Exec>(st_.forces.torque, order, n, into.torque, pins, staging);
+    } else {
+      pins.resize(Exec::backend, into.torque, std::size_t(n));
+      std::fill(into.torque.begin(), into.torque.end(), Vec3d{});  // no effect makes torques
+    }
+  } else {  // the caller reads neither
+    into.force.clear();
+    into.torque.clear();
   }
   if (!st_.keeps_history()) {
     into.contacts.clear();

@@ -406,12 +406,12 @@ ParticleSnapshot Simulation::snapshot() const {
   return s;
 }
 
-void Simulation::snapshot_into(ParticleSnapshot& s, HostPins& pins) const {
+void Simulation::snapshot_into(ParticleSnapshot& s, HostPins& pins, bool with_forces) const {
   kernels_->synchronize();
   const DeviceArray<Index> order = owned_id_order_on_backend(store_.id, std::size_t(store_.n_owned));
   s.time = time_;
   s.step = step_;
-  kernels_->movement().owned_to_host(store_, order.data(), s, pins);
+  kernels_->movement().owned_to_host(store_, order.data(), s, pins, with_forces);
 }
 
 void Simulation::measure_contacts_at(long long step) {

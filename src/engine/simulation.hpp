@@ -76,8 +76,9 @@ class Simulation {
 
   ParticleSnapshot snapshot() const;  // this rank's owned particles
   // The same into `s`, whose arrays keep their memory from call to call
-  // (output reuses one set), page-locked by `pins` on a GPU.
-  void snapshot_into(ParticleSnapshot& s, HostPins& pins) const;
+  // (output reuses one set), page-locked by `pins` on a GPU; without the
+  // forces and torques (left empty) where the caller reads neither.
+  void snapshot_into(ParticleSnapshot& s, HostPins& pins, bool with_forces = true) const;
   // The measurements' contact pass (engine/contact_measure_kernel.hpp) at
   // `step`: after that step's force computation, or now when the simulation
   // is at it. Its result, per owned particle in snapshot (id) order

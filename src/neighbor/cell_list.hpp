@@ -6,6 +6,7 @@
 // The ranges are kept as offsets (cell c holds sorted[cell_begin[c],
 // cell_begin[c + 1]), empty cells included), so the cells of one row of the
 // grid, consecutive in x, form one contiguous range in `sorted`.
+#include <algorithm>
 #include <cstdint>
 
 #include "backend/device_array.hpp"
@@ -180,7 +181,8 @@ void build_cells(CellList& c, const Vec3d* position, const ParticleId* id, Index
   c.sorted.resize_discarding(std::size_t(n));  // both rewritten whole
   c.cell_begin.resize_discarding(std::size_t(grid.cell_count()) + 1);
   const int id_bits = Exec::cell_keys_hold_ids ? 32 : 0;
-  const int key_bits = id_bits + bits_needed(std::uint64_t(grid.cell_count() - 1));
+  // At least one bit: a grid of one cell, keyed by cell alone, still sorts.
+  const int key_bits = std::max(1, id_bits + bits_needed(std::uint64_t(grid.cell_count() - 1)));
   const std::size_t storage_bytes = Exec::sort_storage_bytes(n, key_bits);
   const SortLayout at(n, storage_bytes);
   scratch.resize_discarding(at.total);

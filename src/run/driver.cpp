@@ -301,7 +301,11 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
     mark_if_due(sim.step_count());
     progress.update(sim, particles);
     const long long now = sim.step_count();
-    if ((every > 0 && now % every == 0) || now == total) out.snapshot(sim);
+    // A checkpoint known to follow takes the snapshot's host copy as it is,
+    // which must then hold the forces too (a wall-clock one or a stop
+    // copies them itself).
+    const bool checkpoint_follows = (checkpoint_every > 0 && now % checkpoint_every == 0) || (checkpointing && now == total);
+    if ((every > 0 && now % every == 0) || now == total) out.snapshot(sim, checkpoint_follows);
     if (mixing.due(now)) out.mixing(sim);
     measurements.evaluate(sim);
     const bool wall_due = checkpoint_seconds > 0 &&

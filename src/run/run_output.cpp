@@ -166,7 +166,7 @@ void RunOutput::in_background(std::function<void()> job) {
   if (transport_.rank() == 0) writer_.start(std::move(job));
 }
 
-void RunOutput::snapshot(const Simulation& sim) {
+void RunOutput::snapshot(const Simulation& sim, bool checkpoint_follows) {
   finish();  // the previous files are complete before the host copy is refilled
   auto t = Clock::now();
   std::vector<double> mesh_load;  // per mesh: fx fy fz tx ty tz, summed over ranks (collective)
@@ -174,7 +174,8 @@ void RunOutput::snapshot(const Simulation& sim) {
     mesh_load.insert(mesh_load.end(), {l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y, l.torque.z});
   if (!mesh_load.empty()) transport_.sum(mesh_load);  // every rank has the same meshes
   split_.mesh_loads += lap(t);
-  stage(sim, false);
+  stage(sim, false,
+        checkpoint_follows || fields_.has(SnapshotField::force) || fields_.has(SnapshotField::torque));
   split_.host_copy += lap(t);
   const ParticleSnapshot& s = staged_.particles;
   const bool need_history = keeps_history(scene_.model, scene_.effects);
@@ -195,14 +196,14 @@ void RunOutput::snapshot(const Simulation& sim) {
 // every rank's in staged_ on rank 0. One rank fills staged_ directly; more
 // fill their local_ arrays first. Either way into arrays kept from the last
 // output: no fresh memory to fault in, and on a GPU pinned once.
-void RunOutput::stage(const Simulation& sim, bool with_history) {
+void RunOutput::stage(const Simulation& sim, bool with_history, bool with_forces) {
   const bool one_rank = transport_.size() == 1;
   ParticleSnapshot& mine = one_rank ? staged_.particles : local_;
   staged_from_ = StagedState{};  // until the copy is complete
-  sim.snapshot_into(mine, pins_);
+  sim.snapshot_into(mine, pins_, with_forces);
   if (with_history) stage_history(sim);
   gather_snapshot(transport_, mine, staged_.particles);
-  staged_from_ = StagedState{&sim, sim.step_count(), sim.particle_count()};
+  staged_from_ = StagedState{&sim, sim.step_count(), sim.particle_count(), with_forces};
 }
 
 // The history in the particles' order: this rank's, and every rank's on rank 0.
@@ -215,7 +216,7 @@ void RunOutput::stage_history(const Simulation& sim) {
 
 bool RunOutput::staged_particles_are(const Simulation& sim) const {
   return staged_from_.sim == &sim && staged_from_.step == sim.step_count() &&
-         staged_from_.owned == sim.particle_count();
+         staged_from_.owned == sim.particle_count() && staged_from_.forces;
 }
 
 // On the writer's thread: the snapshot's files, then the indexes that name
@@ -329,7 +330,7 @@ void RunOutput::checkpoint(const Simulation& sim) {
   if (!after_snapshot || writing_history_) finish();
   const auto t = Clock::now();
   if (after_snapshot) stage_history(sim);
-  else stage(sim, true);
+  else stage(sim, true, true);
   split_.host_copy += seconds_since(t);
   writing_history_ = true;
   if (transport_.rank() != 0) return;

@@ -11,9 +11,11 @@
 // them, and they are refilled only after that wait. A checkpoint of the
 // state the last snapshot copied (the same Simulation object at the same
 // step: the caller changes nothing between the two) takes that
-// snapshot's particles as they are, copies the contact history, which the
-// snapshot's file does not read, while that file is still being written, and
-// hands its file to the writer to follow the snapshot's, without a wait.
+// snapshot's particles as they are, where that copy holds the forces (the
+// snapshot was told a checkpoint follows, or its fields name them), copies
+// the contact history, which the snapshot's file does not read, while that
+// file is still being written, and hands its file to the writer to follow
+// the snapshot's, without a wait.
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -42,7 +44,11 @@ class RunOutput {
   RunOutput(const RunOutput&) = delete;
   RunOutput& operator=(const RunOutput&) = delete;
 
-  void snapshot(const Simulation& sim);    // and a time-series row
+  // A snapshot and a time-series row. Its host copy holds the forces and
+  // torques only where the snapshot's fields name them or, with
+  // `checkpoint_follows`, where a checkpoint of this state is next (which
+  // then takes the copy as it is): no time-series value reads them.
+  void snapshot(const Simulation& sim, bool checkpoint_follows = false);
   void checkpoint(const Simulation& sim);  // keeps the newest two
   // Waits until every snapshot and checkpoint handed over is complete on
   // disk; a failure to write one stops every rank (RankFailure).
@@ -80,9 +86,10 @@ class RunOutput {
   void write_timeseries_row(const Simulation& sim, const ParticleSnapshot& s, const ParticleRecords& on_walls,
                             const std::vector<double>& mesh_load);
   void write_snapshot_files(const ParticleSnapshot& s, const std::vector<Wall>& walls, const MeshSet& meshes);
-  void stage(const Simulation& sim, bool with_history);  // the host copy in staged_ (rank 0)
+  void stage(const Simulation& sim, bool with_history, bool with_forces);  // the host copy in staged_ (rank 0)
   void stage_history(const Simulation& sim);             // staged_'s history alone
-  bool staged_particles_are(const Simulation& sim) const;  // the state staged_'s particles hold
+  // Whether staged_'s particles hold the state of `sim` now, and all of it (the forces too).
+  bool staged_particles_are(const Simulation& sim) const;
 
   const SceneSpec& scene_;
   std::string directory_;
@@ -108,6 +115,7 @@ class RunOutput {
     const Simulation* sim = nullptr;
     long long step = -1;
     Index owned = -1;
+    bool forces = false;  // the forces and torques were copied too
   } staged_from_;
   bool writing_history_ = false;  // the writer's job in hand reads staged_.history
   Split split_;

@@ -156,8 +156,9 @@ void expect_checkpoint_of(const std::string& file, const Simulation& sim, const 
 
 // A checkpoint at the step of the last snapshot takes that snapshot's host
 // copy of the particles and copies only the history (while the snapshot's
-// file is written); any other state is copied anew: another simulation at
-// the same step, or the same one a step later.
+// file is written), where the snapshot was told it follows; any other state
+// is copied anew: after a snapshot not told so (whose copy holds no forces),
+// another simulation at the same step, or the same one a step later.
 TEST_P(RunOutputTest, CheckpointAtTheSnapshotsStateTakesItsParticles) {
   const std::string dir = testing::TempDir() + "/run_output_shared_" + backend_name(GetParam());
   std::filesystem::remove_all(dir);
@@ -170,19 +171,24 @@ TEST_P(RunOutputTest, CheckpointAtTheSnapshotsStateTakesItsParticles) {
   const std::unique_ptr<Transport> transport = make_single_transport();
   RunOutput out(scene, dir, *transport, "");
   const std::string at_3 = dir + "/" + checkpoint_h5_name(3), at_4 = dir + "/" + checkpoint_h5_name(4);
-  out.snapshot(a);
+  out.snapshot(a, true);
   out.checkpoint(a);
   out.finish();
   expect_checkpoint_of(at_3, a, "the snapshot's state");
-  out.snapshot(a);
+  out.snapshot(a, true);
   out.checkpoint(b);
   out.finish();
   expect_checkpoint_of(at_3, b, "another simulation at the snapshot's step");
-  out.snapshot(a);
+  out.snapshot(a, true);
   a.run(1);
   out.checkpoint(a);
   out.finish();
   expect_checkpoint_of(at_4, a, "a step after the snapshot");
+  a.run(1);
+  out.snapshot(a);
+  out.checkpoint(a);
+  out.finish();
+  expect_checkpoint_of(dir + "/" + checkpoint_h5_name(5), a, "the state of a snapshot without forces");
   std::filesystem::remove_all(dir);
 }
 
