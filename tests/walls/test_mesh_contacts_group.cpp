@@ -9,8 +9,6 @@
 #include <cstdint>
 #include <cstring>
 #include <random>
-#include <thread>
-#include <type_traits>
 #include <vector>
 
 #include "mesh_test_helpers.hpp"
