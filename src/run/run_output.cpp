@@ -345,6 +345,8 @@ void RunOutput::checkpoint(const Simulation& sim) {
     const auto start = Clock::now();
     write_checkpoint(path, c);  // under a temporary name, renamed when complete
     const double seconds = seconds_since(start);
+    // A file written again (a checkpoint of the same step) is the newest, once.
+    checkpoints_.erase(std::remove(checkpoints_.begin(), checkpoints_.end(), path), checkpoints_.end());
     checkpoints_.push_back(path);
     while (checkpoints_.size() > 2) {
       std::filesystem::remove(checkpoints_.front());

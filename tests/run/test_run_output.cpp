@@ -158,7 +158,9 @@ void expect_checkpoint_of(const std::string& file, const Simulation& sim, const 
 // copy of the particles and copies only the history (while the snapshot's
 // file is written), where the snapshot was told it follows; any other state
 // is copied anew: after a snapshot not told so (whose copy holds no forces),
-// another simulation at the same step, or the same one a step later.
+// another simulation at the same step, or the same one a step later. (Three
+// checkpoints of step 3 in a row: the newest two kept are files, not names
+// listed twice, or the pruning would remove the file just written.)
 TEST_P(RunOutputTest, CheckpointAtTheSnapshotsStateTakesItsParticles) {
   const std::string dir = testing::TempDir() + "/run_output_shared_" + backend_name(GetParam());
   std::filesystem::remove_all(dir);
@@ -175,6 +177,10 @@ TEST_P(RunOutputTest, CheckpointAtTheSnapshotsStateTakesItsParticles) {
   out.checkpoint(a);
   out.finish();
   expect_checkpoint_of(at_3, a, "the snapshot's state");
+  out.snapshot(a);
+  out.checkpoint(a);
+  out.finish();
+  expect_checkpoint_of(at_3, a, "the state of a snapshot without forces");
   out.snapshot(a, true);
   out.checkpoint(b);
   out.finish();
@@ -184,11 +190,6 @@ TEST_P(RunOutputTest, CheckpointAtTheSnapshotsStateTakesItsParticles) {
   out.checkpoint(a);
   out.finish();
   expect_checkpoint_of(at_4, a, "a step after the snapshot");
-  a.run(1);
-  out.snapshot(a);
-  out.checkpoint(a);
-  out.finish();
-  expect_checkpoint_of(dir + "/" + checkpoint_h5_name(5), a, "the state of a snapshot without forces");
   std::filesystem::remove_all(dir);
 }
 
