@@ -139,22 +139,7 @@ void PairCarry<Exec, Real>::list_building(const ParticleStore& s) {
     ++f;
   });
   free_detached_ = Exec::backend == Backend::cpu || h.detached_bytes() >= kKeepDetachedBelow;
-  if (free_detached_) {
-    h.carried.free();
-    h.carried_begin = DeviceArray<ListOffset>(Exec::backend);
-    h.carried_partner = DeviceArray<Index>(Exec::backend);
-    h.origin = DeviceArray<Index>(Exec::backend);
-    h.pending_partner = DeviceArray<ParticleId>(Exec::backend);
-    h.pending.free();
-  } else {  // emptied; the next detach swaps their storage into the new list's place
-    h.carried.clear();
-    h.carried_begin.resize(0);
-    h.carried_partner.resize(0);
-    h.origin.resize(0);
-    h.pending_partner.resize(0);
-    h.pending.clear();
-  }
-  h.pending_rows = 0;
+  h.drop_detached(free_detached_);
 }
 
 // The new list's entries take their springs from the kept table.

@@ -76,15 +76,6 @@ struct PairEntries {
       if (kept & bit) a.resize(n);
     });
   }
-  void clear() {  // no entries, the storage kept
-    touching.resize(0);
-    for_each_history_field(*this, [](const char*, unsigned, auto& a) { a.resize(0); });
-  }
-  void free() {
-    const Backend b = touching.backend();
-    touching = DeviceArray<std::uint8_t>(b);
-    for_each_history_field(*this, [b](const char*, unsigned, auto& a) { a = std::decay_t<decltype(a)>(b); });
-  }
   void swap(PairEntries& o) {
     touching.swap(o.touching);
     for_each_history_field(*this, o, [](const char*, unsigned, auto& a, auto& b) { a.swap(b); });
@@ -149,6 +140,26 @@ struct PairHistory {
   std::size_t detached_bytes() const {
     return carried_begin.bytes() + carried_partner.bytes() + carried.bytes() + origin.bytes() +
            pending_partner.bytes() + pending.bytes() + kept_begin.bytes();
+  }
+  // The detached tables emptied once their contacts are kept: freed, or
+  // with their storage kept for the next detach to swap into the new list's
+  // place (kKeepDetachedBelow).
+  void drop_detached(bool free_storage) {
+    auto drop = [free_storage](auto& a) {
+      if (free_storage) a = std::decay_t<decltype(a)>(a.backend());
+      else a.resize(0);
+    };
+    drop(carried_begin);
+    drop(carried_partner);
+    drop(origin);
+    drop(pending_partner);
+    drop(carried.touching);
+    drop(pending.touching);
+    for_each_history_field(carried, pending, [&](const char*, unsigned, auto& a, auto& b) {
+      drop(a);
+      drop(b);
+    });
+    pending_rows = 0;
   }
 
   DetachedTables detached_tables() const {

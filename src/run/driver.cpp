@@ -312,8 +312,8 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
                           seconds_since(last_checkpoint) >= checkpoint_seconds;
     // Every rank must agree before a collective checkpoint or a stop.
     const bool stop = stop_signal.settle();
-    const bool due = (checkpoint_every > 0 && now % checkpoint_every == 0) || transport.min(wall_due ? 0 : 1) == 0;
-    if (due || stop || (checkpointing && now == total)) {
+    const bool due = checkpoint_follows || transport.min(wall_due ? 0 : 1) == 0;
+    if (due || stop) {
       measurements.evaluate(sim, true);
       out.checkpoint(sim);
       last_checkpoint = Clock::now();
