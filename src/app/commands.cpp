@@ -36,6 +36,10 @@ int command_check(const std::vector<std::string>& args) {
   std::printf("memory:         %s (%.0f bytes per particle, %s for %lld cells; the CPU backend %.0f more per particle)\n",
               human_bytes(m.total_bytes).c_str(), m.bytes_per_particle, human_bytes(m.cell_bytes).c_str(),
               m.cells, m.cpu_pair_bytes);
+  if (m.history_bytes > 0)
+    std::printf("                %.1f %% of the particles start within reach of a wall or mesh: the estimate gives "
+                "them rows of surface slots\n",
+                100 * m.surface_row_share);
   if (m.gpu_kept_bytes > 0)
     std::printf("                on a GPU also %s: the last build's list and pair tables, kept for the next\n",
                 human_bytes(m.gpu_kept_bytes).c_str());

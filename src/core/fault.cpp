@@ -14,6 +14,9 @@ const char* fault_cause(int code) {
     case kFaultSlotsExhausted: return "more simultaneous contacts than contact_slots (raise contact_slots)";
     case kFaultSurfaceSlotsExhausted: return "more simultaneous contacts with walls and mesh features than "
                                              "surface_slots (raise surface_slots)";
+    case kFaultSurfaceUnforeseen: return "the particle touched a wall or mesh that the last build of the neighbour "
+                                         "lists found out of its reach (a defect of grainstorm: please report it "
+                                         "with the scene)";
     case kFaultListOutrun: return "the particle moved more than half the Verlet skin from where the list saw it in "
                                   "a step the list was kept for: its move grew by more than the list's margin (a "
                                   "tenth of the skin) in one step (time step too large or unstable contact)";

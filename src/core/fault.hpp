@@ -14,6 +14,7 @@ enum FaultCode : int {
   kFaultSlotsExhausted = 4,   // more simultaneous contacts than contact_slots
   kFaultListOutrun = 5,       // moved past a Verlet list kept on a verdict read a step late (neighbor/verlet_list.hpp)
   kFaultSurfaceSlotsExhausted = 6,  // more simultaneous wall and mesh contacts than surface_slots
+  kFaultSurfaceUnforeseen = 7,  // a wall or mesh contact of a particle the last build gave no slots (a defect)
 };
 
 struct Fault {

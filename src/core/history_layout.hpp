@@ -6,8 +6,13 @@
 #include <cstddef>
 
 #include "core/hd.hpp"
+#include "core/types.hpp"
 
 namespace gs {
+
+// The row of a particle without one in a table of surface slots
+// (contact/contact_slots.hpp).
+constexpr Index kNoSurfaceRow = -1;
 
 enum class HistoryOrder { slot_major, particle_major };
 

@@ -22,10 +22,11 @@ class ForceComputation {
   virtual void set_meshes(const MeshSet& meshes) = 0;
   virtual void set_mesh_pose(const MeshSet& meshes) = 0;
   virtual void set_mesh_bins(const MeshBins& bins) = 0;
-  // The triangles near each owned particle at the store's positions and the
-  // meshes' poses (walls/mesh_near.hpp), with each build of the neighbour
-  // lists: the forces read them until the next.
-  virtual void build_mesh_near_lists(const ParticleStore& s, double skin) = 0;
+  // With each build of the neighbour lists, what surfaces each owned particle
+  // can touch until the next, at the store's positions and the walls' and
+  // meshes' poses: the triangles near it (walls/mesh_near.hpp), and a row of
+  // surface slots where a wall or mesh is within reach (engine/surface_rows.hpp).
+  virtual void build_surface_lists(const ParticleStore& s, double skin) = 0;
 
   // Forces, torques and history of every owned particle at the store's state.
   virtual void compute(ParticleStore& s, double dt, long long step) = 0;

@@ -15,6 +15,7 @@
 #include "engine/neighbour_finder.hpp"
 #include "engine/pairs_once_policy.hpp"
 #include "engine/step_state.hpp"
+#include "engine/surface_rows.hpp"
 
 namespace gs {
 
@@ -29,6 +30,7 @@ class ForceComputer final : public ForceComputation {
                 const NeighbourFinder<Exec>& neighbours)
       : pairs_(Exec::backend), walls_(Exec::backend), wall_screens_(Exec::backend), meshes_(Exec::backend),
         st_(state), neighbours_(neighbours) {
+    spare_rows_.place_on(Exec::backend);
     if (state.kept != kKept || state.torque != kTorque)
       throw std::logic_error("the step state does not keep what the force computation writes");
     n_materials_ = int(materials.size());
@@ -57,24 +59,18 @@ class ForceComputer final : public ForceComputation {
     }
   }
   void set_mesh_bins(const MeshBins& bins) override { meshes_.set_bins(bins); }
-  // Two passes over the owned particles (count, fill) around a scan of the
-  // counts, whose total comes back to the host to size the list; with as
-  // many lanes per particle as the forces. The scan checks its offsets for
-  // wrapping (one more wait for the device) only where the bound on the
-  // lists' length does not rule it out.
-  void build_mesh_near_lists(const ParticleStore& s, double skin) override {
-    if (meshes_.n_triangles == 0) return;
-    const Index n = s.n_owned;
-    near_begin_.resize_discarding(std::size_t(n) + 1);
-    launch(n, MeshNearPass<false>{meshes_.view(), s.position.data(), s.radius.data(), skin, near_begin_.data(),
-                                  nullptr});
-    const bool bounded = double(n) * double(meshes_.near_bound) < 4294967296.0;
-    const ListOffset total =
-        Exec::scan_counts(near_begin_.data(), n, st_.staging, bounded ? nullptr : "the meshes' near lists");
-    near_triangles_.resize_discarding(total);
-    launch(n, MeshNearPass<true>{meshes_.view(), s.position.data(), s.radius.data(), skin, near_begin_.data(),
-                                 near_triangles_.data()});
-    near_built_at_ = s.revision;
+  void build_surface_lists(const ParticleStore& s, double skin) override {
+    build_mesh_near_lists(s, skin);
+    if constexpr (kKept != 0) {
+      SurfaceNeed need{};
+      need.position = s.position.data();
+      need.radius = s.radius.data();
+      need.walls = walls_.data();
+      need.n_walls = n_walls_;
+      need.near = near_view();
+      need.skin = skin;
+      assign_surface_rows<Exec>(st_.history, spare_rows_, kKept, s.n_owned, need, st_.staging, row_scan_);
+    }
   }
 
   void compute(ParticleStore& s, double dt, long long step) override {
@@ -220,6 +216,26 @@ class ForceComputer final : public ForceComputation {
     return {entry_load_.data(), entry_touching_.data(), v.reverse.data(), s.n_owned};
   }
 
+  // Two passes over the owned particles (count, fill) around a scan of the
+  // counts, whose total comes back to the host to size the list; with as
+  // many lanes per particle as the forces. The scan checks its offsets for
+  // wrapping (one more wait for the device) only where the bound on the
+  // lists' length does not rule it out.
+  void build_mesh_near_lists(const ParticleStore& s, double skin) {
+    if (meshes_.n_triangles == 0) return;
+    const Index n = s.n_owned;
+    near_begin_.resize_discarding(std::size_t(n) + 1);
+    launch(n, MeshNearPass<false>{meshes_.view(), s.position.data(), s.radius.data(), skin, near_begin_.data(),
+                                  nullptr});
+    const bool bounded = double(n) * double(meshes_.near_bound) < 4294967296.0;
+    const ListOffset total =
+        Exec::scan_counts(near_begin_.data(), n, st_.staging, bounded ? nullptr : "the meshes' near lists");
+    near_triangles_.resize_discarding(total);
+    launch(n, MeshNearPass<true>{meshes_.view(), s.position.data(), s.radius.data(), skin, near_begin_.data(),
+                                 near_triangles_.data()});
+    near_built_at_ = s.revision;
+  }
+
   MeshNearView near_view() const {
     if (meshes_.n_triangles == 0) return {};
     return {near_begin_.data(), near_triangles_.data()};
@@ -228,6 +244,7 @@ class ForceComputer final : public ForceComputation {
   SlotTable<Real, kKept> slot_table() {
     ContactHistory<Real>& h = st_.history;
     SlotTable<Real, kKept> t;
+    t.row = h.row.data();
     t.partner = h.partner.data();
 #define GS_POINT_AT_FIELD(name, value, bit) t.name = h.name.data();
     GS_HISTORY_FIELDS(GS_POINT_AT_FIELD)
@@ -247,6 +264,10 @@ class ForceComputer final : public ForceComputation {
   DeviceArray<ListOffset> near_begin_{Exec::backend};
   DeviceArray<std::int32_t> near_triangles_{Exec::backend};
   std::uint64_t near_built_at_ = ~std::uint64_t(0);  // the store's revision then
+  // The surface table's other half at each build (engine/surface_rows.hpp),
+  // and its scan's scratch.
+  ContactHistory<Real> spare_rows_;
+  DeviceArray<unsigned char> row_scan_{Exec::backend};
   StepState<Real>& st_;
   const NeighbourFinder<Exec>& neighbours_;
   // GRAINSTORM_FORCE_LANES, read once, not at every step (the CPU has no lanes).

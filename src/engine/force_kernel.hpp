@@ -456,7 +456,7 @@ struct ForceKernel {
         touched |= 1u << slot;
         state = surface_history.load(i, slot);
       } else {
-        report_fault(fault, kFaultSurfaceSlotsExhausted, id[i], step);
+        report_fault(fault, slot == kNoRowSlot ? kFaultSurfaceUnforeseen : kFaultSurfaceSlotsExhausted, id[i], step);
       }
     }
     const ContactLoad<Real> load = contact_load<Real, Model, Effects>(p, k, state, dt);

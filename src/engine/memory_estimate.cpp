@@ -1,6 +1,7 @@
 #include "engine/memory_estimate.hpp"
 
 #include <algorithm>
+#include <vector>
 
 #include "contact/contact_models.hpp"
 #include "core/particle_fields.hpp"
@@ -9,8 +10,56 @@
 #include "neighbor/verlet_list.hpp"
 #include "scene/particle_sources.hpp"
 #include "walls/mesh.hpp"
+#include "walls/wall_geometry.hpp"
 
 namespace gs {
+namespace {
+
+// The share of the scene's particles, as they start, that a build gives a
+// row of surface slots (engine/surface_rows.hpp): within reach of a wall
+// (each as posed at the start, switched on) or of the ball about a mesh's
+// reference bounds (which holds it in every pose its rotation about its
+// centre gives). Counted over every particle up to kCountedAll of them,
+// else over kRuns evenly spread runs of kRun in id order.
+double surface_row_share(const SceneSpec& scene, double skin) {
+  const std::size_t n = particle_count(scene);
+  if (n == 0) return 0;
+  const double r = largest_radius(scene);
+  std::vector<Wall> walls = scene.walls;
+  for (Wall& w : walls) w.active = true;
+  std::vector<Vec3d> centre;
+  std::vector<double> reach;
+  for (std::int32_t m = 0; m < scene.meshes.n_meshes(); ++m) {
+    Vec3d lo, hi;
+    mesh_reference_bounds(scene.meshes, m, lo, hi);
+    centre.push_back((lo + hi) * 0.5);
+    reach.push_back(0.5 * norm(hi - lo) + r + skin);
+  }
+  std::size_t near = 0, seen = 0;  // (the blocks come one after the other)
+  auto count = [&](const std::vector<Vec3d>& block) {
+    std::size_t k = 0;
+    for (const Vec3d& x : block) {
+      bool hit = false;
+      for (const Wall& w : walls) hit = hit || wall_within_reach(w, x, r, skin);
+      for (std::size_t m = 0; m < centre.size() && !hit; ++m) hit = norm(x - centre[m]) < reach[m];
+      k += hit;
+    }
+    near += k;
+    seen += block.size();
+  };
+  constexpr std::size_t kCountedAll = 20000000, kRuns = 64, kRun = 16384;
+  if (n <= kCountedAll) {
+    for_each_position_block(scene, 0, n, count);
+  } else {
+    for (std::size_t k = 0; k < kRuns; ++k) {
+      const std::size_t first = k * (n - kRun) / (kRuns - 1);
+      for_each_position_block(scene, first, first + kRun, count);
+    }
+  }
+  return double(near) / double(seen);
+}
+
+}  // namespace
 
 MemoryEstimate estimate_memory(const SceneSpec& scene) {
   const double real = fp32_forces(scene.precision) ? 4 : 8;
@@ -33,10 +82,16 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   if (fields_kept & (bit)) springs += wide ? sizeof(value<double>) : sizeof(value<float>);
     GS_HISTORY_FIELDS(GS_ADD_FIELD)
 #undef GS_ADD_FIELD
-    // Surface slots of a partner id and the springs; a touching flag and the
-    // springs per list entry (engine/pair_history.hpp).
+    // A touching flag and the springs per list entry (engine/pair_history.hpp);
+    // a row's index per particle, and for the share of them near a wall or
+    // mesh a row of surface slots of a partner id and the springs, with room
+    // for a quarter more, twice: the table and its other half at a build
+    // (engine/surface_rows.hpp).
     pair_entry = sizeof(std::uint8_t) + springs;
-    m.history_bytes = (sizeof(ParticleId) + springs) * scene.surface_slots + pair_entry * entries;
+    const double r = largest_radius(scene), skin = 2 * r * scene.verlet_skin;
+    m.surface_row_share = surface_row_share(scene, skin);
+    m.history_bytes = pair_entry * entries + sizeof(Index) +
+                      2 * 1.25 * m.surface_row_share * (sizeof(ParticleId) + springs) * scene.surface_slots;
     // At a rebuild, each particle's touching contacts (a partner id and the
     // springs; at most twelve touch in a close-packed bed) wait in the
     // staging buffer for the new list (engine/pair_keep.hpp), beside the old

@@ -21,7 +21,8 @@ struct MemoryEstimate {
   double bytes_per_particle = 0;  // the sum of the parts below
   double field_bytes = 0;         // particle state (core/particle_fields.hpp), per particle
   double force_bytes = 0;         // force and torque, per particle
-  double history_bytes = 0;       // contact history: surface slots and pair entries, per particle
+  double history_bytes = 0;       // contact history: pair entries and surface rows, per particle
+  double surface_row_share = 0;   // the share of the particles with a row of surface slots
   double rebuild_bytes = 0;       // beside the lists at a rebuild: origin rows and kept offsets, per particle
   double list_bytes = 0;          // Verlet list, the cell list's order and the meshes' near lists, per particle
   double staging_bytes = 0;       // the staging buffer at its largest (the kept contacts), per particle

@@ -14,6 +14,7 @@
 #include "engine/neighbour_finder.hpp"
 #include "engine/pair_keep.hpp"
 #include "engine/step_state.hpp"
+#include "engine/surface_rows.hpp"
 
 namespace gs {
 
@@ -86,6 +87,7 @@ class PairCarry final : public StoreObserver, public ListFollower {
   StepState<Real>& st_;
   NeighbourFinder<Exec>& finder_;
   KeptLayout kept_;  // the kept table in the staging buffer, from list_building to list_built
+  DeviceArray<ListOffset> arrival_rows_{Exec::backend};  // arrive's scan into new surface rows
 };
 
 // The list still describes the store: its entries become the partners' ids
@@ -191,7 +193,17 @@ void PairCarry<Exec, Real>::arrive(Index first, Index m, const ParticleId* partn
   ContactHistory<Real>& surface = st_.history;
   Exec::parallel_for(m, SurfaceOverflow{h.pending_partner.data(), id, width, surface.slots, row0, first,
                                         st_.fault.data()});
-  const PendingSurfaces surfaces{h.pending_partner.data(), width, surface.slots, row0, first};
+  // Rows at the table's end for the arrivals with surface contacts, the
+  // others none (the next build gives each particle its row anew:
+  // engine/surface_rows.hpp); the particles' rows reach first + m (reserve).
+  const PendingSurfaces surfaces{h.pending_partner.data(), width, surface.slots, row0, first, surface.row.data()};
+  arrival_rows_.resize_discarding(std::size_t(m) + 1);
+  Exec::parallel_for(m, CountPendingSurfaces{surfaces, arrival_rows_.data()});
+  const Index added = Index(Exec::scan_counts(arrival_rows_.data(), m, finder_.verlet().scan_scratch, nullptr));
+  const std::size_t needed = std::size_t(surface.rows) + std::size_t(added);
+  if (needed > surface.capacity) grow_surface_table<Exec>(surface, st_.kept, needed + needed / 4 + 16);
+  Exec::parallel_for(m, PendingSurfaceRows{surface.row.data(), first, surface.rows, arrival_rows_.data()});
+  surface.rows += added;
   Exec::parallel_for(m, PendingPartnersToSurface{surfaces, surface.partner.data(), surface.strides});
   for_each_history_field(h.pending, surface, [&](const char*, unsigned bit, const auto& from, auto& to) {
     using T = typename std::decay_t<decltype(to)>::value_type;
@@ -213,6 +225,7 @@ ContactRows PairCarry<Exec, Real>::rows(const ParticleStore& s) const {
   r.id = s.id.data();
   r.current_touching = h.current.touching.data();
   r.detached = h.detached_tables();
+  r.surface_row = surface.row.data();
   r.surface_partner = surface.partner.data();
   r.strides = surface.strides;
   r.surface_slots = surface.slots;

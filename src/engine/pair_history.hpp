@@ -211,7 +211,8 @@ struct ContactRows {
   const ParticleId* id;
   const std::uint8_t* current_touching;
   DetachedTables detached;
-  // walls and mesh features
+  // walls and mesh features: each particle's row of the surface table
+  const Index* surface_row;
   const ParticleId* surface_partner;
   HistoryStrides strides;
   int surface_slots;
@@ -243,8 +244,10 @@ struct ContactRows {
           if (detached.carried_touching[c])
             put(kFromCarried, std::size_t(c), static_cast<ParticleId>(detached.carried_partner[c]));
     }
+    const Index row = surface_row[i];
+    if (row == kNoSurfaceRow) return r;
     for (int s = 0; s < surface_slots; ++s) {
-      const std::size_t at = strides.at(s, std::size_t(i));
+      const std::size_t at = strides.at(s, std::size_t(row));
       if (surface_partner[at] != kNoPartner) put(kFromSurface, at, surface_partner[at]);
     }
     return r;
@@ -331,11 +334,12 @@ struct RowsToPending {
 };
 
 // The surface contacts (walls, mesh features) of pending row row0 + k into
-// the slot table of particle first + k, in row order: f(slot, row entry).
+// the surface row of particle first + k, in row order: f(slot, row entry).
 struct PendingSurfaces {
   const ParticleId* partner;  // pending rows
   int width, slots;
   Index row0, first;
+  const Index* row;  // the particles' surface rows
   template <class F>
   GS_HD int for_each(Index k, const F& f) const {
     const std::size_t row = (std::size_t(row0) + std::size_t(k)) * std::size_t(width);
@@ -348,13 +352,36 @@ struct PendingSurfaces {
   }
 };
 
+// Whether arrival k has surface contacts: begin[k + 1] = 1 or 0 (item 0
+// also sets begin[0] = 0), for a scan into new surface rows.
+struct CountPendingSurfaces {
+  PendingSurfaces rows;
+  ListOffset* begin;
+  GS_HD void operator()(Index k) const {
+    if (k == 0) begin[0] = 0;
+    begin[k + 1] = rows.for_each(k, [](int, std::size_t) {}) > 0 ? 1 : 0;
+  }
+};
+
+// Arrival k's surface row: base + begin[k] where it has surface contacts.
+struct PendingSurfaceRows {
+  Index* row;
+  Index first, base;
+  const ListOffset* begin;
+  GS_HD void operator()(Index k) const {
+    row[first + k] = begin[k + 1] > begin[k] ? base + Index(begin[k]) : kNoSurfaceRow;
+  }
+};
+
 // Their partner ids, the other slots free.
 struct PendingPartnersToSurface {
   PendingSurfaces rows;
   ParticleId* to;
   HistoryStrides strides;
   GS_HD void operator()(Index k) const {
-    const std::size_t i = std::size_t(rows.first) + std::size_t(k);
+    const Index r = rows.row[rows.first + k];
+    if (r == kNoSurfaceRow) return;
+    const std::size_t i = std::size_t(r);
     int n = rows.for_each(k, [&](int s, std::size_t e) { to[strides.at(s, i)] = rows.partner[e]; });
     for (; n < rows.slots; ++n) to[strides.at(n, i)] = kNoPartner;
   }
@@ -368,7 +395,9 @@ struct PendingFieldToSurface {
   T* to;
   HistoryStrides strides;
   GS_HD void operator()(Index k) const {
-    const std::size_t i = std::size_t(rows.first) + std::size_t(k);
+    const Index r = rows.row[rows.first + k];
+    if (r == kNoSurfaceRow) return;
+    const std::size_t i = std::size_t(r);
     rows.for_each(k, [&](int s, std::size_t e) { to[strides.at(s, i)] = from[e]; });
   }
 };

@@ -11,17 +11,21 @@
 #include "engine/pair_carry.hpp"
 #include "engine/particle_movement.hpp"
 #include "engine/step_state.hpp"
+#include "engine/surface_rows.hpp"
 
 namespace gs {
 
 // Whether particle i has a stored contact on an analytic wall.
 struct TouchesWall {
+  const Index* row;
   const ParticleId* partner;
   HistoryStrides strides;
   int slots;
   GS_HD bool operator()(Index i) const {
+    const Index r = row[i];
+    if (r == kNoSurfaceRow) return false;
     for (int k = 0; k < slots; ++k) {
-      const ParticleId p = partner[strides.at(k, std::size_t(i))];
+      const ParticleId p = partner[strides.at(k, std::size_t(r))];
       if (p >= kWallPartnerBase && p != kNoPartner) return true;
     }
     return false;
@@ -36,13 +40,14 @@ class ParticleMover final : public ParticleMovement {
   void reserve(Index n) override {
     st_.forces.force.resize(n);
     if (st_.torque) st_.forces.torque.resize(n);
-    // Geometric growth, as DeviceArray's: ranks append ghosts every step, and
-    // growing to the exact size re-laid the whole history (through the host)
-    // at every new maximum of owned + ghosts: 90 ms per step in the mixer's
-    // case c on two ranks.
+    // The particles beyond those the history knows have no surface row
+    // (until arrive gives them theirs, or the next build: engine/surface_rows.hpp).
     ContactHistory<Real>& h = st_.history;
-    if (st_.keeps_history() && std::size_t(n) > h.capacity)
-      grow_history(std::max(std::size_t(n), h.capacity + h.capacity / 4));
+    if (st_.keeps_history() && std::size_t(n) > h.row.size()) {
+      const std::size_t had = h.row.size();
+      h.row.resize(std::size_t(n));
+      Exec::parallel_for(Index(std::size_t(n) - had), Fill<Index>{h.row.data() + had, kNoSurfaceRow});
+    }
   }
 
   MessageHeader pack(const ParticleStore& s, const DeviceArray<Index>& which, bool with_history,
@@ -72,7 +77,7 @@ class ParticleMover final : public ParticleMovement {
 
   void synchronize() const override { Exec::synchronize(); }
   std::size_t bytes() const override {
-    std::size_t history = st_.history.partner.bytes() + st_.pairs.bytes();
+    std::size_t history = st_.history.row.bytes() + st_.history.partner.bytes() + st_.pairs.bytes();
     for_each_history_field(st_.history, [&](const char*, unsigned, const auto& a) { history += a.bytes(); });
     return st_.forces.force.bytes() + st_.forces.torque.bytes() + history + st_.staging.bytes();
   }
@@ -80,7 +85,6 @@ class ParticleMover final : public ParticleMovement {
  private:
   // What a message of `count` particles of store s carries from this run.
   MessageHeader message_header(const ParticleStore& s, Index count, bool with_history) const;
-  void grow_history(std::size_t capacity);
   void keep_in_order(ParticleStore& s, const Index* order, Index n);
   void arrive_from_host(const ParticleStore& s, Index first, const HostHistory& h);
   static std::vector<Vec3<Real>> narrowed(const std::vector<Vec3d>& v, Index n) {

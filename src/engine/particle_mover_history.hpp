@@ -14,38 +14,6 @@ void gather_in_place(DeviceArray<T>& a, const Index* order, Index n, DeviceArray
   backend_copy(Exec::backend, a.data(), tmp, std::size_t(n) * sizeof(T));
 }
 
-// to[k * to_stride] = from[order[k] * from_stride] (order null: k).
-template <class T>
-struct GatherStrided {
-  const T* from;
-  std::size_t from_stride;
-  T* to;
-  std::size_t to_stride;
-  const Index* order;
-  GS_HD void operator()(Index k) const {
-    const std::size_t source = std::size_t(order ? order[k] : k);
-    to[std::size_t(k) * to_stride] = from[source * from_stride];
-  }
-};
-
-// One slot at a time, so the scratch is one particle array, not the whole
-// history (this keeps the peak memory of a step near what the run holds).
-// A slot's entries are `particle_stride` apart; slot-major makes them contiguous.
-template <class Exec, class T>
-void gather_slots_in_place(DeviceArray<T>& a, const Index* order, Index n, int slots, const HistoryStrides& strides,
-                           DeviceArray<unsigned char>& scratch) {
-  if (a.size() == 0) return;
-  scratch.resize_discarding(std::size_t(n) * sizeof(T));
-  T* tmp = reinterpret_cast<T*>(scratch.data());
-  const std::size_t step = strides.particle_stride;
-  for (int s = 0; s < slots; ++s) {
-    T* column = a.data() + strides.at(s, 0);
-    Exec::parallel_for(n, GatherStrided<T>{column, step, tmp, 1, order});
-    if (step == 1) backend_copy(Exec::backend, column, tmp, std::size_t(n) * sizeof(T));
-    else Exec::parallel_for(n, GatherStrided<T>{tmp, 1, column, step, nullptr});
-  }
-}
-
 template <class Exec, class Real>
 void ParticleMover<Exec, Real>::reorder(ParticleStore& s, const DeviceArray<Index>& order) {
   if (s.n_ghost != 0 || order.size() != std::size_t(s.n_owned))
@@ -54,7 +22,7 @@ void ParticleMover<Exec, Real>::reorder(ParticleStore& s, const DeviceArray<Inde
 }
 
 // Owned particles order[0, n) become [0, n), with their forces and history
-// (the surface slots gathered, the pair history's origins: engine/pair_carry.hpp).
+// (their surface rows, the pair history's origins: engine/pair_carry.hpp).
 template <class Exec, class Real>
 void ParticleMover<Exec, Real>::keep_in_order(ParticleStore& s, const Index* order, Index n) {
   DeviceArray<unsigned char>& tmp = st_.staging;
@@ -63,52 +31,11 @@ void ParticleMover<Exec, Real>::keep_in_order(ParticleStore& s, const Index* ord
   gather_in_place<Exec>(st_.forces.force, order, n, tmp);
   if (st_.torque) gather_in_place<Exec>(st_.forces.torque, order, n, tmp);
   if (st_.keeps_history()) {
-    gather_slots_in_place<Exec>(st_.history.partner, order, n, st_.history.slots, st_.history.strides, tmp);
-    for_each_history_field(st_.history, [&](const char*, unsigned, auto& a) {
-      gather_slots_in_place<Exec>(a, order, n, st_.history.slots, st_.history.strides, tmp);
-    });
+    // The surface rows stay where they are; each particle takes its row's index along.
+    st_.history.row.resize(std::size_t(n));
+    gather_in_place<Exec>(st_.history.row, order, n, tmp);
     pairs_.permute(order, n, tmp);
   }
-}
-
-// Row i of a history in the layout `fresh`: the entries of `old` for
-// particles below old_capacity, `empty` beyond (free slots).
-template <class T>
-struct RelayoutRow {
-  const T* from;
-  T* to;
-  HistoryStrides old, fresh;
-  Index old_capacity;
-  int slots;
-  T empty;
-  GS_HD void operator()(Index i) const {
-    const std::size_t p = std::size_t(i);
-    for (int s = 0; s < slots; ++s) to[fresh.at(s, p)] = i < old_capacity ? from[old.at(s, p)] : empty;
-  }
-};
-
-// Growing the capacity changes the strides of a slot-major history: the
-// entries are re-laid out (new particles start with free slots) on the
-// backend. (Through the host, as it once was, a GPU run of 3e8 particles
-// spent most of its set-up filling 58 GB of empty history there.)
-template <class Exec, class Real>
-void ParticleMover<Exec, Real>::grow_history(std::size_t capacity) {
-  ContactHistory<Real>& h = st_.history;
-  const HistoryStrides old = h.strides;
-  const HistoryStrides fresh = HistoryStrides::of(Exec::history_order, h.slots, capacity);
-  auto relayout = [&](auto& a, auto empty) {
-    using T = decltype(empty);
-    DeviceArray<T> grown(Exec::backend, std::size_t(h.slots) * capacity);
-    Exec::parallel_for(Index(capacity),
-                       RelayoutRow<T>{a.data(), grown.data(), old, fresh, Index(h.capacity), h.slots, empty});
-    a = std::move(grown);
-  };
-  relayout(h.partner, kNoPartner);
-  for_each_history_field(h, [&](const char*, unsigned bit, auto& a) {
-    if (st_.kept & bit) relayout(a, typename std::decay_t<decltype(a)>::value_type{});
-  });
-  h.capacity = capacity;
-  h.strides = fresh;
 }
 
 // Every owned particle's row (a restart's), before the first list is built.

@@ -170,7 +170,8 @@ ParticleRecords ParticleMover<Exec, Real>::wall_contact_history(const ParticleSt
   DeviceArray<unsigned char>& selected = st_.staging;
   selected.resize_discarding(std::size_t(s.n_owned) * sizeof(Index));
   DeviceArray<unsigned char> selection_storage(Exec::backend);
-  const Index m = Exec::select(s.n_owned, TouchesWall{st_.history.partner.data(), st_.history.strides, st_.history.slots},
+  const Index m = Exec::select(s.n_owned, TouchesWall{st_.history.row.data(), st_.history.partner.data(),
+                                                           st_.history.strides, st_.history.slots},
                                reinterpret_cast<Index*>(selected.data()), selection_storage);
   if (m == 0) return r;
   DeviceArray<Index> which(Exec::backend, std::size_t(m));

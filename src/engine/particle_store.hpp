@@ -18,18 +18,30 @@ struct ForceArrays {
   DeviceArray<Vec3<Real>> torque;  // contact torque [N m]
 };
 
-// Contact history of up to `capacity` particles, laid out as `strides` says
-// (core/history_layout.hpp; the execution policy picks the order). A field
-// the run does not keep stays empty.
+// The contact history of walls and mesh features: a table of `capacity`
+// rows of `slots` slots, laid out as `strides` says (core/history_layout.hpp;
+// the execution policy picks the order), of which [0, rows) are in use, and
+// each owned particle's row (`row`, kNoSurfaceRow where it has none:
+// engine/surface_rows.hpp). A field the run does not keep stays empty.
 template <class Real>
 struct ContactHistory {
   int slots = 0;
   std::size_t capacity = 0;
+  Index rows = 0;
+  bool row_for_every_particle = false;  // RunOptions::surface_row_for_every_particle
   HistoryStrides strides;
+  DeviceArray<Index> row;           // per particle
   DeviceArray<ParticleId> partner;  // kNoPartner marks a free slot
 #define GS_DECLARE_FIELD(name, value, bit) DeviceArray<value<Real>> name;
   GS_HISTORY_FIELDS(GS_DECLARE_FIELD)
 #undef GS_DECLARE_FIELD
+
+  // Empty arrays in memory of backend b.
+  void place_on(Backend b) {
+    row = DeviceArray<Index>(b);
+    partner = DeviceArray<ParticleId>(b);
+    for_each_history_field(*this, [b](const char*, unsigned, auto& a) { a = std::decay_t<decltype(a)>(b); });
+  }
 };
 
 struct ParticleStore;

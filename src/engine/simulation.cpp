@@ -92,7 +92,8 @@ void Simulation::set_up(const SceneSpec& scene) {
   store_.place_on(b);
   store_.fields_kept = particle_fields_kept(scene);
   kernels_ = make_step_kernels({b, scene.precision, scene.model, scene.effects},
-                               {scene.materials, scene.pairs, scene.contact_slots, scene.surface_slots});
+                               {scene.materials, scene.pairs, scene.contact_slots, scene.surface_slots,
+                                options_.surface_row_for_every_particle});
   const double diameter = 2.0 * largest_radius(scene), skin = scene.verlet_skin * diameter;
   skin_ = kernels_->neighbours().uses_verlet_list() ? skin : 0.0;
   kernels_->neighbours().watch_moves(!exchange_);
@@ -108,6 +109,13 @@ void Simulation::set_up(const SceneSpec& scene) {
     const Wall& w = walls_[k];
     walls_move_ = walls_move_ || norm2(w.velocity) > 0 || norm2(w.angular_velocity) > 0 ||
                   !timeline_of(scene.wall_timelines, k).none();
+  }
+  watch_walls_ = walls_move_ && history_fields_kept(scene.model, scene.effects) != 0;
+  if (watch_walls_) {
+    // A particle's centre stays within the domain (a cell's width beyond it
+    // covers the step that finds one outside).
+    const Vec3d margin{grid_.cell_size, grid_.cell_size, grid_.cell_size};
+    wall_drift_ = WallDrift(scene.domain_min - margin, scene.domain_max + margin);
   }
   meshes_ = scene.meshes;
   if (meshes_.n_triangles() > 0) {
@@ -229,13 +237,18 @@ std::vector<MeshLoad> Simulation::mesh_loads() const {
 
 void Simulation::rebuild_neighbours() {
   kernels_->neighbours().build(store_, grid_, skin_);
-  kernels_->forces().build_mesh_near_lists(store_, skin_);
+  kernels_->forces().build_surface_lists(store_, skin_);
   mesh_drift_.built(meshes_);
+  if (watch_walls_) wall_drift_.built(walls_);
 }
 
-// The meshes' motion since the lists were built, against the half skin the
-// near lists leave it (walls/mesh_near.hpp); the same on every rank.
-bool Simulation::meshes_drifted() const { return meshes_move_ && mesh_drift_.beyond(meshes_, 0.5 * skin_); }
+// The meshes' and walls' motion since the lists were built, against the half
+// skin the near lists and the surface rows leave it (walls/mesh_near.hpp,
+// engine/surface_rows.hpp); the same on every rank.
+bool Simulation::surfaces_drifted() const {
+  return (meshes_move_ && mesh_drift_.beyond(meshes_, 0.5 * skin_)) ||
+         (watch_walls_ && wall_drift_.beyond(walls_, 0.5 * skin_));
+}
 
 IntegrationParams Simulation::integration_params() const {
   return {scene_.time_step, scene_.gravity, scene_.domain_min, scene_.domain_max, 0.5 * grid_.cell_size, step_,
@@ -279,7 +292,7 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
     // with ranks it is rebuilt after every rebuild of the halo, whose vote
     // has already measured the moves. Memory is re-sorted only at a rebuild.
     t0 = Clock::now();
-    if (kernels_->neighbours().stale(store_) || meshes_drifted()) {
+    if (kernels_->neighbours().stale(store_) || surfaces_drifted()) {
       finish_forward();  // (a list built on the ghosts' last positions would be wrong)
       if (!exchange_) reorder_if_due();
       rebuild_neighbours();
@@ -326,7 +339,7 @@ void Simulation::exchange_particles() {
   auto t0 = Clock::now();
   const long long next = step_ + 1;
   const bool balance = options_.rebalance_interval > 0 && next % options_.rebalance_interval == 0;
-  if (!exchange_->halo_stale(store_, kernels_->movement(), balance || rebuild_due_ || meshes_drifted())) {
+  if (!exchange_->halo_stale(store_, kernels_->movement(), balance || rebuild_due_ || surfaces_drifted())) {
     exchange_->start_forward(store_, kernels_->movement());
     forward_in_flight_ = true;  // finished by compute_forces
     timings_.exchange += phase_seconds(t0);

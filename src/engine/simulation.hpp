@@ -16,6 +16,7 @@
 #include "engine/step_kernels.hpp"
 #include "scene/scene.hpp"
 #include "walls/mesh_drift.hpp"
+#include "walls/wall_drift.hpp"
 
 namespace gs {
 
@@ -31,6 +32,10 @@ struct RunOptions {
   int reorder_interval = 25;     // steps between re-sorting particle memory by cell
   int fault_check_interval = 50; // steps between reading the fault flag
   int rebalance_interval = 500;  // steps between load-balance checks (several ranks)
+  // A row of surface slots for every particle instead of those within reach
+  // of a wall or mesh (engine/surface_rows.hpp): a check of the rule, which
+  // must give the same bits.
+  bool surface_row_for_every_particle = false;
 };
 
 class Simulation {
@@ -115,7 +120,8 @@ class Simulation {
   void move_walls(double t);
   void pose_meshes(double t);
   void rebuild_neighbours();
-  bool meshes_drifted() const;  // a build of the lists is due for the meshes' motion
+  // A build of the lists is due for the meshes' or the walls' motion.
+  bool surfaces_drifted() const;
   void insert_due();
   void append_inserted(const std::vector<ParticleInit>& inserted);
   void measure_contacts();  // the contact pass, now
@@ -140,6 +146,10 @@ class Simulation {
   double skin_ = 0;  // Verlet list skin [m]; 0 without a list
   std::vector<Wall> walls_;
   bool walls_move_ = false;
+  // Only the surface rows (engine/surface_rows.hpp) follow the walls' motion:
+  // set where the run keeps contact history and a wall moves.
+  bool watch_walls_ = false;
+  WallDrift wall_drift_;
   MeshSet meshes_;
   bool meshes_move_ = false;
   MeshDrift mesh_drift_;

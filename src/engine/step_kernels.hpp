@@ -61,6 +61,7 @@ struct ContactInputs {
   const std::vector<PairSpec>& pairs;
   int contact_slots;      // a particle's row of contacts (messages, checkpoints)
   int surface_slots = 4;  // its slots for walls and mesh features (scene key surface_slots)
+  bool surface_row_for_every_particle = false;  // RunOptions' check (engine/surface_rows.hpp)
 };
 std::unique_ptr<StepKernels> make_step_kernels(const KernelChoice& choice, const ContactInputs& contacts);
 std::unique_ptr<StepKernels> make_step_kernels_cpu(const KernelChoice& choice, const ContactInputs& contacts);

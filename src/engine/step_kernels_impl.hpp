@@ -39,7 +39,9 @@ class StepKernelsOf final : public StepKernels {
                in.surface_slots),
         finder_(state_.staging), carry_(state_, finder_), mover_(state_, carry_), remover_(mover_),
         integrator_(state_, finder_),
-        forces_(dispatch_forces<Exec, Real>(c, in, state_, finder_)) {}
+        forces_(dispatch_forces<Exec, Real>(c, in, state_, finder_)) {
+    state_.history.row_for_every_particle = in.surface_row_for_every_particle;
+  }
 
   ParticleMovement& movement() override { return mover_; }
   const ParticleMovement& movement() const override { return mover_; }

@@ -23,8 +23,7 @@ struct StepState {
     forces.force = DeviceArray<Vec3<Real>>(b);
     forces.torque = DeviceArray<Vec3<Real>>(b);
     history.slots = kept != 0 ? surface_slots : 0;
-    history.partner = DeviceArray<ParticleId>(b);
-    for_each_history_field(history, [b](const char*, unsigned, auto& a) { a = std::decay_t<decltype(a)>(b); });
+    history.place_on(b);
     fault.zero();
   }
 
@@ -34,7 +33,7 @@ struct StepState {
   const bool torque;      // whether an effect makes torques
   const int row_width;    // contacts in a particle's row (contact_slots; 0 without history)
   ForceArrays<Real> forces;
-  ContactHistory<Real> history;  // walls and mesh features (surface_slots per particle)
+  ContactHistory<Real> history;  // walls and mesh features (surface_slots per row, rows where needed)
   PairHistory<Real> pairs;       // particle pairs, per Verlet list entry (engine/pair_history.hpp)
   DeviceArray<Fault> fault;  // the first fault of a step (core/fault.hpp)
   // Reused staging for data movement (reorder, migration, ghosts) and for the

@@ -103,4 +103,29 @@ GS_HD GS_INLINE bool wall_contact(const Wall& w, const Vec3d& x, double radius, 
   return true;
 }
 
+// Whether a sphere (centre x, radius) could touch wall w as wall_contact
+// decides once its centre has moved by at most `reach` relative to the wall
+// (in the wall's reference frame): false only when it certainly could not.
+// The contact's region of centres, widened by reach: within radius + reach of
+// a plane, disk, plate or cone, and of a cylinder's mantle; a disk's or a
+// cylinder's bounds (its radius, its length) widened by reach.
+GS_HD GS_INLINE bool wall_within_reach(const Wall& w, const Vec3d& x, double radius, double reach) {
+  if (!w.active) return false;
+  const Vec3d xr = wall_to_reference(w, x);
+  const double band = radius + reach;
+  if (w.kind == WallKind::cylinder) {
+    const Vec3d a = xr - w.point;
+    const double s = dot(a, w.normal);
+    if (s < -reach || s > w.length + reach) return false;
+    const double d = w.radius - norm(a - s * w.normal);
+    return d < band && d > -band;
+  }
+  if (w.kind == WallKind::plate || w.kind == WallKind::cone) return norm((xr - w.point) - sheet_nearest(w, xr)) < band;
+  const double d = dot(xr - w.point, w.normal);  // plane or disk
+  if (!(d < band && d > -band)) return false;
+  if (w.kind != WallKind::disk) return true;
+  const double rim = w.radius + reach;
+  return norm2(xr - d * w.normal - w.point) < rim * rim;
+}
+
 }  // namespace gs

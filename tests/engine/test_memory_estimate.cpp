@@ -46,9 +46,8 @@ constexpr double kCpuPairEntry = 4 + 24 + 1;
 // Per particle, from the declarations: id 4, material and marker 1 each,
 // radius, mass and inertia 4 each, position, velocity and angular velocity
 // 24 each (no orientation: the scene's snapshots do not hold it); fp32
-// force and torque 12 each; 4 surface slots
-// of a 4-byte partner id and a 12-byte spring, and per list entry a
-// touching flag and a spring (13); Verlet list offsets 4, fp32 reference 12,
+// force and torque 12 each; per list entry a touching flag and a spring
+// (13), a surface row's index (4) and no row (no wall is near); Verlet list offsets 4, fp32 reference 12,
 // 12 entries of 4; the cell order 4; staging: at a rebuild the kept
 // contacts, 12 of a partner id and a spring (192; without history a
 // position's 24); beside them the origin rows and the kept offsets, 4 each.
@@ -56,11 +55,12 @@ TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   const MemoryEstimate m = estimate_memory(lattice_scene(2, kFriction));
   EXPECT_EQ(m.field_bytes, 4 + 1 + 1 + 3 * 4 + 3 * 24);
   EXPECT_EQ(m.force_bytes, 24);
-  EXPECT_EQ(m.history_bytes, 4 * (4 + 12) + 12 * 13);
+  EXPECT_EQ(m.surface_row_share, 0);
+  EXPECT_EQ(m.history_bytes, 12 * 13 + 4);
   EXPECT_EQ(m.list_bytes, 4 + 12 + 12 * 4 + 4);
   EXPECT_EQ(m.staging_bytes, 12 * (4 + 12));
   EXPECT_EQ(m.rebuild_bytes, 4 + 4);
-  EXPECT_EQ(m.bytes_per_particle, 90 + 24 + 220 + 68 + 192 + 8);
+  EXPECT_EQ(m.bytes_per_particle, 90 + 24 + 160 + 68 + 192 + 8);
   EXPECT_EQ(m.cpu_pair_bytes, 12 * kCpuPairEntry);
   // A small scene's GPU run keeps the last build's tables: offsets 4, 12
   // entries of an index and a pair entry (4 + 13), origin and kept offsets 8.
@@ -77,6 +77,20 @@ TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   SceneSpec with_orientations = lattice_scene(2, kFriction);
   with_orientations.output.fields = {"position", "orientation"};
   EXPECT_EQ(estimate_memory(with_orientations).field_bytes, 90 + 16);
+}
+
+// A floor 1 mm under the lower layer's centres of the side-2 lattice: its
+// four spheres are within the reach of a radius and the skin (1.2 mm), the
+// upper four (3 mm) are not. Half the spheres hold a row of 4 surface slots of
+// 16 bytes, with room for a quarter more, twice at a build.
+TEST(MemoryEstimate, SurfaceRowsForTheSpheresNearAWall) {
+  SceneSpec scene = lattice_scene(2, kFriction);
+  scene.walls = {plane_wall({0, 0, -0.016}, {0, 0, 1})};
+  const MemoryEstimate m = estimate_memory(scene);
+  EXPECT_EQ(m.surface_row_share, 0.5);
+  EXPECT_EQ(m.history_bytes, 12 * 13 + 4 + 2 * 1.25 * 0.5 * 4 * 16);
+  scene.walls[0].point.z = -0.0163;  // 1.3 mm: out of reach
+  EXPECT_EQ(estimate_memory(scene).surface_row_share, 0);
 }
 
 // The peak of a CPU run of `scene` over `steps` steps, per particle, what

@@ -7,19 +7,10 @@
 
 #include "walls/wall_motion.hpp"
 #include "walls/wall_screen.hpp"
+#include "wall_test_helpers.hpp"
 
 namespace gs {
 namespace {
-
-Wall make_wall(WallKind kind, Vec3d point, Vec3d normal, double radius = 0, double length = 0) {
-  Wall w;
-  w.kind = kind;
-  w.point = point;
-  w.normal = normal * (1.0 / norm(normal));
-  w.radius = radius;
-  w.length = length;
-  return w;
-}
 
 // A wall turning about a tilted axis and drifting, posed at time t.
 Wall moved(Wall w, double t) {
