@@ -74,9 +74,15 @@ class ParticleMovement {
                              bool with_forces) const = 0;
   // The same for the contact history (empty rows without history).
   virtual void history_to_host(const ParticleStore& s, const Index* order, HostHistory& into, HostPins& pins) const = 0;
-  // Ids and history rows (store order) of the owned particles with a stored
-  // contact on an analytic wall: what the wall loads need of the history.
-  virtual ParticleRecords wall_contact_history(const ParticleStore& s) const = 0;
+  // The owned particles' store indices in ascending id order, into `order`
+  // (engine/owned_id_order.hpp).
+  virtual void owned_id_order(const ParticleStore& s, DeviceArray<Index>& order) const = 0;
+  // Ids and history rows of the owned particles with a stored contact on an
+  // analytic wall, in the order `order` gives the owned particles (store
+  // indices): what the wall loads need of the history. As owned_to_host,
+  // into arrays kept from call to call (the other fields of `into` left empty).
+  virtual void wall_contact_history(const ParticleStore& s, const Index* order, ParticleRecords& into,
+                                    HostPins& pins) const = 0;
 
   virtual void synchronize() const = 0;  // waits for the backend's work
   virtual std::size_t bytes() const = 0;  // forces, history and staging

@@ -9,6 +9,7 @@
 
 #include "engine/gather.hpp"
 #include "engine/pair_carry.hpp"
+#include "engine/owned_id_order.hpp"
 #include "engine/particle_movement.hpp"
 #include "engine/step_state.hpp"
 #include "engine/surface_rows.hpp"
@@ -30,6 +31,13 @@ struct TouchesWall {
     }
     return false;
   }
+};
+
+// The same of the particle at position k of an order of store indices.
+struct TouchesWallAt {
+  TouchesWall touches;
+  const Index* order;
+  GS_HD bool operator()(Index k) const { return touches(order[k]); }
 };
 
 template <class Exec, class Real>
@@ -73,7 +81,11 @@ class ParticleMover final : public ParticleMovement {
   void owned_to_host(const ParticleStore& s, const Index* order, ParticleSnapshot& into, HostPins& pins,
                      bool with_forces) const override;
   void history_to_host(const ParticleStore& s, const Index* order, HostHistory& into, HostPins& pins) const override;
-  ParticleRecords wall_contact_history(const ParticleStore& s) const override;
+  void wall_contact_history(const ParticleStore& s, const Index* order, ParticleRecords& into,
+                            HostPins& pins) const override;
+  void owned_id_order(const ParticleStore& s, DeviceArray<Index>& order) const override {
+    gs::owned_id_order<Exec>(s.id.data(), s.n_owned, order, st_.staging);
+  }
 
   void synchronize() const override { Exec::synchronize(); }
   std::size_t bytes() const override {

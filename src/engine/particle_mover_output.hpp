@@ -131,4 +131,59 @@ void ParticleMover<Exec, Real>::history_to_host(const ParticleStore& s, const In
   });
 }
 
+// Selected and gathered on the backend, so only the particles on a wall
+// cross to the host: the whole history is some 500 bytes per particle there.
+template <class Exec, class Real>
+void ParticleMover<Exec, Real>::wall_contact_history(const ParticleStore& s, const Index* order, ParticleRecords& into,
+                                                     HostPins& pins) const {
+  {  // only the ids and the history, their arrays kept
+    std::vector<ParticleId> id = std::move(into.id);
+    HostHistory history = std::move(into.history);
+    into = ParticleRecords{};
+    into.id = std::move(id);
+    into.history = std::move(history);
+  }
+  HostHistory& h = into.history;
+  h.slots = st_.row_width;
+  const bool any = st_.keeps_history() && s.n_owned > 0;
+  // Selected into the staging buffer (a position per owned particle); only
+  // the m selected store indices are kept apart, so the output holds 4
+  // bytes per particle on a wall beside the run, not 4 per particle.
+  Index m = 0;
+  DeviceArray<Index> which(Exec::backend);
+  if (any) {
+    DeviceArray<unsigned char>& selected = st_.staging;
+    selected.resize_discarding(std::size_t(s.n_owned) * sizeof(Index));
+    DeviceArray<unsigned char> selection_storage(Exec::backend);
+    const TouchesWall touches{st_.history.row.data(), st_.history.partner.data(), st_.history.strides, st_.history.slots};
+    m = Exec::select(s.n_owned, TouchesWallAt{touches, order}, reinterpret_cast<Index*>(selected.data()),
+                     selection_storage);
+    which.resize(std::size_t(m));
+    Exec::parallel_for(m, Gather<Index>{order, which.data(), reinterpret_cast<const Index*>(selected.data())});
+  }
+  const std::size_t width = std::size_t(std::max(0, h.slots));
+  rows_to_host<Exec>(into.id, m, 1, pins, st_.staging, [&](Index first, Index k, ParticleId* to) {
+    Exec::parallel_for(k, GatherRowsAs<ParticleId, ParticleId>{s.id.data(), to, which.data(), first});
+  });
+  if (!st_.keeps_history()) {
+    h.partner.clear();
+    for_each_history_field(h, [](const char*, unsigned, auto& rows) { rows.clear(); });
+    return;
+  }
+  // Each particle's row (engine/pair_history.hpp), widened to the host type.
+  const ContactRows rows = pairs_.rows(s);
+  rows_to_host<Exec>(h.partner, m, width, pins, st_.staging, [&](Index first, Index k, ParticleId* to) {
+    Exec::parallel_for(k, ContactRowPartners{rows, to, which.data(), first, k, false, s.id.data(), st_.fault.data()});
+  });
+  for_each_history_field(h, [](const char*, unsigned, auto& rows) { rows.clear(); });
+  pairs_.for_each_field_sources(h, [&](int, const auto& from, auto& out) {
+    using T = std::remove_const_t<std::remove_pointer_t<std::decay_t<decltype(from[0])>>>;
+    using U = typename std::decay_t<decltype(out)>::value_type;
+    rows_to_host<Exec>(out, m, width, pins, st_.staging, [&](Index first, Index k, U* to) {
+      Exec::parallel_for(k, ContactRowValues<T, U>{rows, {from[0], from[1], from[2], from[3]}, to, which.data(), first,
+                                                   k, false});
+    });
+  });
+}
+
 }  // namespace gs

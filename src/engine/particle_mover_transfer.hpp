@@ -157,49 +157,4 @@ void ParticleMover<Exec, Real>::append(ParticleStore& s, const ParticleRecords& 
   arrive_from_host(s, Index(first), h);
 }
 
-// Selected and gathered on the backend, so only the particles on a wall
-// cross to the host: the whole history is some 500 bytes per particle there.
-template <class Exec, class Real>
-ParticleRecords ParticleMover<Exec, Real>::wall_contact_history(const ParticleStore& s) const {
-  ParticleRecords r;
-  r.history.slots = st_.row_width;
-  if (!st_.keeps_history() || s.n_owned == 0) return r;
-  // Selected into the staging buffer (an index per owned particle); only the
-  // m selected are kept apart, so the output holds 4 bytes per particle on a
-  // wall beside the run, not 4 per particle.
-  DeviceArray<unsigned char>& selected = st_.staging;
-  selected.resize_discarding(std::size_t(s.n_owned) * sizeof(Index));
-  DeviceArray<unsigned char> selection_storage(Exec::backend);
-  const Index m = Exec::select(s.n_owned, TouchesWall{st_.history.row.data(), st_.history.partner.data(),
-                                                           st_.history.strides, st_.history.slots},
-                               reinterpret_cast<Index*>(selected.data()), selection_storage);
-  if (m == 0) return r;
-  DeviceArray<Index> which(Exec::backend, std::size_t(m));
-  backend_copy(Exec::backend, which.data(), selected.data(), std::size_t(m) * sizeof(Index));
-  DeviceArray<unsigned char> block(Exec::backend);
-  const std::size_t entries = std::size_t(m) * std::size_t(st_.row_width);
-  const ContactRows rows = pairs_.rows(s);
-  block.resize_discarding(std::size_t(m) * sizeof(ParticleId));
-  gather_into<Exec>(s.id, which, block.data());
-  r.id.resize(std::size_t(m));
-  backend_copy_to_host(Exec::backend, r.id.data(), block.data(), r.id.size() * sizeof(ParticleId));
-  // Each particle's row (engine/pair_history.hpp), widened to the host type.
-  block.resize_discarding(entries * sizeof(ParticleId));
-  Exec::parallel_for(m, ContactRowPartners{rows, reinterpret_cast<ParticleId*>(block.data()), which.data(), 0, m, false,
-                                           s.id.data(), st_.fault.data()});
-  r.history.partner.resize(entries);
-  backend_copy_to_host(Exec::backend, r.history.partner.data(), block.data(), entries * sizeof(ParticleId));
-  pairs_.for_each_field_sources(r.history, [&](int, const auto& from, auto& host) {
-    using T = std::remove_const_t<std::remove_pointer_t<std::decay_t<decltype(from[0])>>>;
-    block.resize_discarding(entries * sizeof(T));
-    Exec::parallel_for(m, ContactRowValues<T, T>{rows, {from[0], from[1], from[2], from[3]},
-                                                 reinterpret_cast<T*>(block.data()), which.data(), 0, m, false});
-    std::vector<T> device_rows(entries);
-    backend_copy_to_host(Exec::backend, device_rows.data(), block.data(), entries * sizeof(T));
-    host.resize(entries);
-    for (std::size_t e = 0; e < entries; ++e) host[e] = typename std::decay_t<decltype(host)>::value_type(device_rows[e]);
-  });
-  return r;
-}
-
 }  // namespace gs

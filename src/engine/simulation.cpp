@@ -34,15 +34,6 @@ std::vector<std::size_t> owned_id_order(const DeviceArray<ParticleId>& ids, std:
   return id_order(id);
 }
 
-// The same as store indices on the backend, for kernels that put fields in id order.
-DeviceArray<Index> owned_id_order_on_backend(const DeviceArray<ParticleId>& ids, std::size_t n) {
-  const std::vector<std::size_t> order = owned_id_order(ids, n);
-  std::vector<Index> index(order.begin(), order.end());
-  DeviceArray<Index> out(ids.backend());
-  out.from_host(index);
-  return out;
-}
-
 }  // namespace
 
 Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::shared_ptr<RankExchange> exchange)
@@ -421,7 +412,8 @@ ParticleSnapshot Simulation::snapshot() const {
 
 void Simulation::snapshot_into(ParticleSnapshot& s, HostPins& pins, bool with_forces) const {
   kernels_->synchronize();
-  const DeviceArray<Index> order = owned_id_order_on_backend(store_.id, std::size_t(store_.n_owned));
+  DeviceArray<Index> order(store_.backend);
+  kernels_->movement().owned_id_order(store_, order);
   s.time = time_;
   s.step = step_;
   kernels_->movement().owned_to_host(store_, order.data(), s, pins, with_forces);
@@ -449,13 +441,17 @@ std::vector<ContactMeasure> Simulation::contact_measures() const {
 }
 
 ParticleRecords Simulation::wall_contact_history() const {
+  ParticleRecords r;
+  HostPins unpinned(false);
+  wall_contact_history_into(r, unpinned);
+  return r;
+}
+
+void Simulation::wall_contact_history_into(ParticleRecords& r, HostPins& pins) const {
   kernels_->synchronize();
-  const ParticleRecords r = kernels_->movement().wall_contact_history(store_);
-  const std::vector<std::size_t> order = id_order(r.id);
-  ParticleRecords out;
-  out.id = permuted(r.id, order);
-  out.history = rows_permuted(r.history, order);
-  return out;
+  DeviceArray<Index> order(store_.backend);
+  kernels_->movement().owned_id_order(store_, order);
+  kernels_->movement().wall_contact_history(store_, order.data(), r, pins);
 }
 
 HostHistory Simulation::history() const {
@@ -467,7 +463,8 @@ HostHistory Simulation::history() const {
 
 void Simulation::history_into(HostHistory& h, HostPins& pins) const {
   kernels_->synchronize();
-  const DeviceArray<Index> order = owned_id_order_on_backend(store_.id, std::size_t(store_.n_owned));
+  DeviceArray<Index> order(store_.backend);
+  kernels_->movement().owned_id_order(store_, order);
   kernels_->movement().history_to_host(store_, order.data(), h, pins);
 }
 

@@ -95,6 +95,7 @@ class Simulation {
   void history_into(HostHistory& h, HostPins& pins) const;  // as snapshot_into
   // Ids (ascending) and history of the particles with a stored wall contact.
   ParticleRecords wall_contact_history() const;
+  void wall_contact_history_into(ParticleRecords& r, HostPins& pins) const;  // as snapshot_into
   std::size_t device_bytes() const;
   // Wall time in run() per phase: the total is measured, its split over the
   // phases is that of the timed steps (every kTimedEvery-th, see phase_seconds).

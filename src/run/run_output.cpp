@@ -178,9 +178,15 @@ void RunOutput::snapshot(const Simulation& sim, bool checkpoint_follows) {
         checkpoint_follows || fields_.has(SnapshotField::force) || fields_.has(SnapshotField::torque));
   split_.host_copy += lap(t);
   const ParticleSnapshot& s = staged_.particles;
+  // The particles on a wall, with their history, into arrays kept from the
+  // last output; every rank's on rank 0.
   const bool need_history = keeps_history(scene_.model, scene_.effects);
-  const ParticleRecords on_walls =
-      need_history ? gather_history_records(transport_, sim.wall_contact_history()) : ParticleRecords();
+  if (need_history) sim.wall_contact_history_into(on_walls_, pins_);
+  else on_walls_ = ParticleRecords{};
+  const bool one_rank = transport_.size() == 1;
+  ParticleRecords gathered;
+  if (!one_rank) gathered = gather_history_records(transport_, on_walls_);
+  const ParticleRecords& on_walls = one_rank ? on_walls_ : gathered;
   split_.wall_records += lap(t);
   written_by_rank_0([&] { write_timeseries_row(sim, s, on_walls, mesh_load); });
   split_.series += lap(t);

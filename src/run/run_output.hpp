@@ -110,6 +110,7 @@ class RunOutput {
   Checkpoint staged_;
   ParticleSnapshot local_;
   HostHistory local_history_;
+  ParticleRecords on_walls_;  // this rank's particles on a wall, at the last snapshot
   // Whose state the particles in staged_ (and local_) hold: a simulation at a step.
   struct StagedState {
     const Simulation* sim = nullptr;
