@@ -62,6 +62,9 @@ class ForceComputer final : public ForceComputation {
   void build_surface_lists(const ParticleStore& s, double skin) override {
     build_mesh_near_lists(s, skin);
     if constexpr (kKept != 0) {
+      // No surface, no row held: nothing to assign (and no scan to wait for).
+      const ContactHistory<Real>& h = st_.history;
+      if (n_walls_ == 0 && meshes_.n_triangles == 0 && h.rows == 0 && !h.row_for_every_particle) return;
       SurfaceNeed need{};
       need.position = s.position.data();
       need.radius = s.radius.data();

@@ -201,7 +201,7 @@ void PairCarry<Exec, Real>::arrive(Index first, Index m, const ParticleId* partn
   Exec::parallel_for(m, CountPendingSurfaces{surfaces, arrival_rows_.data()});
   const Index added = Index(Exec::scan_counts(arrival_rows_.data(), m, finder_.verlet().scan_scratch, nullptr));
   const std::size_t needed = std::size_t(surface.rows) + std::size_t(added);
-  if (needed > surface.capacity) grow_surface_table<Exec>(surface, st_.kept, needed + needed / 4 + 16);
+  if (needed > surface.capacity) grow_surface_table<Exec>(surface, st_.kept, surface_capacity(needed));
   Exec::parallel_for(m, PendingSurfaceRows{surface.row.data(), first, surface.rows, arrival_rows_.data()});
   surface.rows += added;
   Exec::parallel_for(m, PendingPartnersToSurface{surfaces, surface.partner.data(), surface.strides});

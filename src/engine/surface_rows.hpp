@@ -94,6 +94,10 @@ struct SetSurfaceRow {
   GS_HD void operator()(Index i) const { row[i] = begin[i + 1] > begin[i] ? Index(begin[i]) : kNoSurfaceRow; }
 };
 
+// A table's capacity for `rows` rows: room for those of the particles that
+// arrive before the next build.
+inline std::size_t surface_capacity(std::size_t rows) { return rows + rows / 4 + 16; }
+
 // Row i of a table in the layout `fresh`: row i of `old` for rows below
 // `keep`, `empty` beyond (free slots).
 template <class T>
@@ -165,8 +169,7 @@ void assign_surface_rows(ContactHistory<Real>& h, ContactHistory<Real>& spare, u
   need.begin = begin;
   Exec::parallel_for(n, need);
   const Index rows = n == 0 ? 0 : Index(Exec::scan_counts(begin, n, scan_scratch, nullptr));  // at most n
-  // Room for the rows of particles that arrive before the next build.
-  const std::size_t capacity = std::size_t(rows) + std::size_t(rows) / 4 + 16;
+  const std::size_t capacity = surface_capacity(std::size_t(rows));
   const HistoryStrides fresh = HistoryStrides::of(Exec::history_order, h.slots, capacity);
   const HistoryStrides old = h.strides;
   std::size_t spare_bytes = 0;
