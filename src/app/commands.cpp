@@ -35,7 +35,7 @@ int command_check(const std::vector<std::string>& args) {
               estimated_list_entries(scene.verlet_skin));
   std::printf("memory:         %s (%.0f bytes per particle, %s for %lld cells; the CPU backend %.0f more per particle)\n",
               human_bytes(m.total_bytes).c_str(), m.bytes_per_particle, human_bytes(m.cell_bytes).c_str(),
-              m.cells, m.cpu_pair_bytes);
+              m.cells, m.cpu_extra_bytes);
   if (m.history_bytes > 0)
     std::printf("                %.1f %% of the particles start within reach of a wall or mesh: the estimate gives "
                 "them rows of surface slots\n",

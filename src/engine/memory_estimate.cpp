@@ -105,20 +105,26 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   // With meshes, the near lists' offsets (walls/mesh_near.hpp); their
   // entries, 4 bytes per triangle near a particle, are few and left out.
   if (scene.meshes.n_meshes() > 0) m.list_bytes += sizeof(ListOffset);
-  // The staging buffer at its largest: a gather of the widest field (a
-  // position) when memory is re-sorted, the sort's keys and second buffers
-  // while the cell list is built, or the kept contacts at a rebuild
-  // (engine/step_state.hpp).
-  m.staging_bytes = std::max({double(sizeof(Vec3d)), double(2 * sizeof(std::uint64_t) + sizeof(Index)), kept});
-  m.bytes_per_particle =
-      m.field_bytes + m.force_bytes + m.history_bytes + m.list_bytes + m.staging_bytes + m.rebuild_bytes;
-  m.cpu_pair_bytes = (sizeof(ListOffset) + 6 * real + sizeof(std::uint8_t)) * entries;
+  // The staging buffer at its largest: a re-sort's gather of one component
+  // of a field (fp64: engine/particle_mover_history.hpp), a sort's keys and
+  // second buffers (the cell list's while it is built, the id order's at
+  // output: 32-bit keys, 12 bytes per particle, on a GPU where the cells
+  // number at most 2^32: neighbor/cell_list.hpp), or the kept contacts at a
+  // rebuild (engine/step_state.hpp).
   const double r = largest_radius(scene);
   if (r > 0) {
     const CellGrid g = make_cell_grid(scene.domain_min, scene.domain_max, 2 * r, periodic_box(scene));
     m.cells = g.cell_count();
     m.cell_bytes = double(sizeof(Index)) * double(m.cells + 1);  // the cells' offsets
   }
+  const double key = m.cells <= (std::int64_t(1) << 32) ? sizeof(std::uint32_t) : sizeof(std::uint64_t);
+  const double sort = 2 * key + sizeof(Index);
+  m.staging_bytes = std::max({double(sizeof(double)), sort, kept});
+  m.bytes_per_particle =
+      m.field_bytes + m.force_bytes + m.history_bytes + m.list_bytes + m.staging_bytes + m.rebuild_bytes;
+  // The CPU's sort keys hold the ids too (64 bits: neighbor/cell_list.hpp).
+  const double cpu_staging = std::max(2.0 * sizeof(std::uint64_t) + sizeof(Index), kept);
+  m.cpu_extra_bytes = (sizeof(ListOffset) + 6 * real + sizeof(std::uint8_t)) * entries + cpu_staging - m.staging_bytes;
   const MeshSet& meshes = scene.meshes;
   if (r > 0 && meshes.n_meshes() > 0) {
     const double skin = 2 * r * scene.verlet_skin;

@@ -27,10 +27,12 @@ struct MemoryEstimate {
   double list_bytes = 0;          // Verlet list, the cell list's order and the meshes' near lists, per particle
   double staging_bytes = 0;       // the staging buffer at its largest (the kept contacts), per particle
   double cell_bytes = 0;          // cell tables
-  // The CPU's alone, not in bytes_per_particle: computing each pair once
-  // keeps per list entry the partner's reverse entry, a load (force and
-  // torque) and a touching flag (engine/force_kernel.hpp, EntryLoads), per particle.
-  double cpu_pair_bytes = 0;
+  // The CPU's alone, not in bytes_per_particle, per particle: computing each
+  // pair once keeps per list entry the partner's reverse entry, a load
+  // (force and torque) and a touching flag (engine/force_kernel.hpp,
+  // EntryLoads); and its cell sort's keys hold the ids (64 bits), so its
+  // staging buffer holds 20 bytes where a GPU's may hold less.
+  double cpu_extra_bytes = 0;
   // A GPU's alone, not in total_bytes: where the last build's list and pair
   // tables hold less than kKeepDetachedBelow (engine/pair_history.hpp), a
   // GPU keeps them for the next build instead of freeing them; their bytes

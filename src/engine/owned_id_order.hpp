@@ -17,7 +17,7 @@ namespace gs {
 // keys[k] = id[k], values[k] = k.
 struct IdKeys {
   const ParticleId* id;
-  std::uint64_t* keys;
+  std::uint32_t* keys;
   Index* values;
   GS_HD void operator()(Index k) const {
     keys[k] = id[k];
@@ -34,16 +34,10 @@ void owned_id_order(const ParticleId* id, Index n, DeviceArray<Index>& order, De
     Index* to = order.data();
     for (Index k = 0; k < n; ++k) to[k] = Index(o[std::size_t(k)]);
   } else {
-    constexpr int kKeyBits = 32;  // every id
-    const std::size_t storage_bytes = Exec::sort_storage_bytes(n, kKeyBits);
-    const SortLayout at(n, storage_bytes);
-    scratch.resize_discarding(at.total);
-    unsigned char* base = scratch.data();
-    SortPairs p{reinterpret_cast<std::uint64_t*>(base + at.keys), reinterpret_cast<std::uint64_t*>(base + at.keys_alt),
-                order.data(), reinterpret_cast<Index*>(base + at.values_alt), n, kKeyBits};
-    Exec::parallel_for(n, IdKeys{id, p.keys, p.values});
-    Exec::sort_pairs(p, base + at.storage, storage_bytes);
-    if (p.values != order.data()) backend_copy(Exec::backend, order.data(), p.values, std::size_t(n) * sizeof(Index));
+    static_assert(sizeof(ParticleId) == sizeof(std::uint32_t), "ids are the sort's 32-bit keys");
+    sort_in_scratch<Exec, std::uint32_t>(n, 32, order.data(), scratch, [&](SortPairs<std::uint32_t>& p) {
+      Exec::parallel_for(n, IdKeys{id, p.keys, p.values});
+    });
   }
 }
 

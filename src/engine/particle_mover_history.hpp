@@ -6,12 +6,59 @@
 
 namespace gs {
 
+// A re-sort gathers each field into the staging buffer and copies it back.
+// A field of three components (positions, velocities, forces) goes a
+// component at a time where the staging buffer holds less than the whole
+// field: a third of the room (8 bytes per particle for fp64, not 24), so the
+// re-sort is not what sizes the staging buffer (engine/step_state.hpp).
+// Component c's placing kernel also gathers component c + 1 (each thread
+// touches only its own staging entry, and the components are disjoint), so
+// a field takes four launches instead of a gather and a copy.
+template <class T>
+struct GatherComponent {  // to[k] = component c of particle order[k]
+  const T* from;          // the field as n x 3 values
+  T* to;
+  const Index* order;
+  int c;
+  GS_HD void operator()(Index k) const { to[k] = from[3 * std::size_t(order[k]) + std::size_t(c)]; }
+};
+
+template <class T>
+struct PlaceComponent {  // component c of particle k = tmp[k]; then tmp[k] = component c + 1 of order[k], if any
+  T* field;
+  T* tmp;
+  const Index* order;
+  int c;
+  GS_HD void operator()(Index k) const {
+    const T v = tmp[k];
+    if (c < 2) tmp[k] = field[3 * std::size_t(order[k]) + std::size_t(c) + 1];
+    field[3 * std::size_t(k) + std::size_t(c)] = v;
+  }
+};
+
 template <class Exec, class T>
 void gather_in_place(DeviceArray<T>& a, const Index* order, Index n, DeviceArray<unsigned char>& scratch) {
   scratch.resize_discarding(std::size_t(n) * sizeof(T));
   T* tmp = reinterpret_cast<T*>(scratch.data());
   Exec::parallel_for(n, Gather<T>{a.data(), tmp, order});
   backend_copy(Exec::backend, a.data(), tmp, std::size_t(n) * sizeof(T));
+}
+
+template <class Exec, class T>
+void gather_in_place(DeviceArray<Vec3<T>>& a, const Index* order, Index n, DeviceArray<unsigned char>& scratch) {
+  static_assert(sizeof(Vec3<T>) == 3 * sizeof(T), "a Vec3 is three values");
+  if (scratch.bytes() >= std::size_t(n) * sizeof(Vec3<T>)) {
+    scratch.resize_discarding(std::size_t(n) * sizeof(Vec3<T>));  // (no new storage)
+    Vec3<T>* tmp = reinterpret_cast<Vec3<T>*>(scratch.data());
+    Exec::parallel_for(n, Gather<Vec3<T>>{a.data(), tmp, order});
+    backend_copy(Exec::backend, a.data(), tmp, std::size_t(n) * sizeof(Vec3<T>));
+    return;
+  }
+  scratch.resize_discarding(std::size_t(n) * sizeof(T));
+  T* tmp = reinterpret_cast<T*>(scratch.data());
+  T* field = reinterpret_cast<T*>(a.data());
+  Exec::parallel_for(n, GatherComponent<T>{field, tmp, order, 0});
+  for (int c = 0; c < 3; ++c) Exec::parallel_for(n, PlaceComponent<T>{field, tmp, order, c});
 }
 
 template <class Exec, class Real>

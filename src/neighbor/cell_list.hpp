@@ -8,6 +8,7 @@
 // grid, consecutive in x, form one contiguous range in `sorted`.
 #include <algorithm>
 #include <cstdint>
+#include <type_traits>
 
 #include "backend/device_array.hpp"
 #include "core/types.hpp"
@@ -28,9 +29,13 @@ struct CellList {
 // The pairs a radix sort orders: keys carrying indices, each with a second
 // buffer of the same length (the passes alternate between the two). On
 // return `keys` and `values` point to the sorted pairs, in either buffer.
+// Keys of 32 bits where they fit (a GPU's cells alone, ids), else 64: the
+// buffers are a step's largest transient where nothing else is.
+template <class Key>
 struct SortPairs {
-  std::uint64_t* keys;
-  std::uint64_t* keys_alt;
+  static_assert(std::is_same_v<Key, std::uint32_t> || std::is_same_v<Key, std::uint64_t>, "32- or 64-bit keys");
+  Key* keys;
+  Key* keys_alt;
   Index* values;
   Index* values_alt;
   Index n;
@@ -40,16 +45,17 @@ struct SortPairs {
 // A particle's sort key: its cell above id_bits bits of its id (32), or the
 // cell alone (id_bits 0: the stable sort then keeps a cell's particles in
 // memory order).
+template <class Key>
 struct CellKeys {
   const Vec3d* position;
   const ParticleId* id;
   CellGrid grid;
-  std::uint64_t* keys;
+  Key* keys;
   Index* values;
   int id_bits;
   GS_HD void operator()(Index i) const {
-    const std::uint64_t cell = std::uint64_t(grid.linear(grid.coord(position[i])));
-    keys[i] = id_bits == 0 ? cell : (cell << id_bits) | id[i];
+    const Key cell = Key(grid.linear(grid.coord(position[i])));
+    keys[i] = id_bits == 0 ? cell : Key(cell << id_bits) | Key(id[i]);  // (64-bit keys where id_bits > 0)
     values[i] = i;
   }
 };
@@ -57,8 +63,9 @@ struct CellKeys {
 // Offsets from the particles' side, item k in [0, n]: every cell after the
 // cell of particle k - 1, up to the cell of particle k, starts at k. The work
 // is O(n + cells) in all, but one item walks a whole empty stretch of cells.
+template <class Key>
 struct CellBeginsByParticle {
-  const std::uint64_t* keys;
+  const Key* keys;
   Index n;
   std::int64_t cells;
   Index* cell_begin;
@@ -72,13 +79,14 @@ struct CellBeginsByParticle {
 
 // Offsets from the cells' side, item c in [0, cells]: a binary search for the
 // first particle in cell c or after it. Each item does O(log n) work.
+template <class Key>
 struct CellBeginsByCell {
-  const std::uint64_t* keys;
+  const Key* keys;
   Index n;
   Index* cell_begin;
   int id_bits;  // CellKeys'
   GS_HD void operator()(Index c) const {
-    const std::uint64_t first_key = std::uint64_t(c) << id_bits;
+    const Key first_key = Key(Key(c) << id_bits);
     Index lo = 0, hi = n;
     while (lo < hi) {
       const Index mid = lo + (hi - lo) / 2;
@@ -160,8 +168,8 @@ inline int bits_needed(std::uint64_t v) {
 struct SortLayout {
   std::size_t keys = 0, keys_alt = 0, values_alt = 0, storage = 0, total = 0;
   static std::size_t aligned(std::size_t b) { return (b + 255) / 256 * 256; }
-  SortLayout(Index n, std::size_t storage_bytes) {
-    const std::size_t k = aligned(std::size_t(n) * sizeof(std::uint64_t)), v = aligned(std::size_t(n) * sizeof(Index));
+  SortLayout(Index n, std::size_t key_bytes, std::size_t storage_bytes) {
+    const std::size_t k = aligned(std::size_t(n) * key_bytes), v = aligned(std::size_t(n) * sizeof(Index));
     keys_alt = k;
     values_alt = 2 * k;
     storage = 2 * k + v;
@@ -169,11 +177,42 @@ struct SortLayout {
   }
 };
 
+// Sorts n pairs (keys written by make_keys(p), values) with their second
+// buffers and the sort's storage in `scratch`; the sorted values end in
+// `values` (`values` is also the pairs' first value buffer), and the sorted
+// keys are returned (in `scratch`, valid until its next use).
+template <class Exec, class Key, class MakeKeys>
+const Key* sort_in_scratch(Index n, int key_bits, Index* values, DeviceArray<unsigned char>& scratch,
+                           const MakeKeys& make_keys) {
+  const std::size_t storage_bytes = Exec::template sort_storage_bytes<Key>(n, key_bits);
+  const SortLayout at(n, sizeof(Key), storage_bytes);
+  scratch.resize_discarding(at.total);
+  unsigned char* base = scratch.data();
+  SortPairs<Key> p{reinterpret_cast<Key*>(base + at.keys), reinterpret_cast<Key*>(base + at.keys_alt), values,
+                   reinterpret_cast<Index*>(base + at.values_alt), n, key_bits};
+  make_keys(p);
+  Exec::sort_pairs(p, base + at.storage, storage_bytes);
+  if (p.values != values && n > 0) backend_copy(Exec::backend, values, p.values, std::size_t(n) * sizeof(Index));
+  return p.keys;
+}
+
 // Bins particles [0, n) into the grid's cells. The keys and the sort's
 // second buffers live in `scratch` only during this call (the step's staging
 // buffer, which holds nothing between calls: engine/step_state.hpp), so a
-// run does not keep 20 bytes per particle of sort buffers beside the
-// staging buffer it needs anyway.
+// run does not keep the sort's buffers (12 bytes per particle with 32-bit
+// keys, 20 with 64) beside the staging buffer it needs anyway.
+template <class Exec, class Key>
+void build_cells_keyed(CellList& c, const Vec3d* position, const ParticleId* id, Index n, const CellGrid& grid,
+                       int id_bits, int key_bits, DeviceArray<unsigned char>& scratch) {
+  const Key* keys = sort_in_scratch<Exec, Key>(n, key_bits, c.sorted.data(), scratch, [&](SortPairs<Key>& p) {
+    Exec::parallel_for(n, CellKeys<Key>{position, id, grid, p.keys, p.values, id_bits});
+  });
+  if constexpr (Exec::cell_begins_by_particle)
+    Exec::parallel_for(n + 1, CellBeginsByParticle<Key>{keys, n, grid.cell_count(), c.cell_begin.data(), id_bits});
+  else
+    Exec::parallel_for(Index(grid.cell_count() + 1), CellBeginsByCell<Key>{keys, n, c.cell_begin.data(), id_bits});
+}
+
 template <class Exec>
 void build_cells(CellList& c, const Vec3d* position, const ParticleId* id, Index n, const CellGrid& grid,
                  DeviceArray<unsigned char>& scratch) {
@@ -183,20 +222,11 @@ void build_cells(CellList& c, const Vec3d* position, const ParticleId* id, Index
   const int id_bits = Exec::cell_keys_hold_ids ? 32 : 0;
   // At least one bit: a grid of one cell, keyed by cell alone, still sorts.
   const int key_bits = std::max(1, id_bits + bits_needed(std::uint64_t(grid.cell_count() - 1)));
-  const std::size_t storage_bytes = Exec::sort_storage_bytes(n, key_bits);
-  const SortLayout at(n, storage_bytes);
-  scratch.resize_discarding(at.total);
-  unsigned char* base = scratch.data();
-  SortPairs p{reinterpret_cast<std::uint64_t*>(base + at.keys), reinterpret_cast<std::uint64_t*>(base + at.keys_alt),
-              c.sorted.data(), reinterpret_cast<Index*>(base + at.values_alt), n, key_bits};
-  Exec::parallel_for(n, CellKeys{position, id, grid, p.keys, p.values, id_bits});
-  Exec::sort_pairs(p, base + at.storage, storage_bytes);
-  if (p.values != c.sorted.data() && n > 0)
-    backend_copy(Exec::backend, c.sorted.data(), p.values, std::size_t(n) * sizeof(Index));
-  if constexpr (Exec::cell_begins_by_particle)
-    Exec::parallel_for(n + 1, CellBeginsByParticle{p.keys, n, grid.cell_count(), c.cell_begin.data(), id_bits});
+  // (Keys with ids take 64 bits: a shift by the ids' 32 would overflow 32-bit keys.)
+  if (id_bits == 0 && key_bits <= 32)
+    build_cells_keyed<Exec, std::uint32_t>(c, position, id, n, grid, id_bits, key_bits, scratch);
   else
-    Exec::parallel_for(Index(grid.cell_count() + 1), CellBeginsByCell{p.keys, n, c.cell_begin.data(), id_bits});
+    build_cells_keyed<Exec, std::uint64_t>(c, position, id, n, grid, id_bits, key_bits, scratch);
 }
 
 }  // namespace gs

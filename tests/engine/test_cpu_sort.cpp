@@ -12,18 +12,19 @@
 namespace gs {
 namespace {
 
-void expect_sorted_like_std(const std::vector<std::uint64_t>& keys) {
+template <class Key>
+void expect_sorted_like_std(const std::vector<Key>& keys) {
   const Index n = Index(keys.size());
-  std::vector<std::uint64_t> key_buffer = keys, key_alt(keys.size());
+  std::vector<Key> key_buffer = keys, key_alt(keys.size());
   std::vector<Index> order(keys.size()), value_buffer(keys.size()), value_alt(keys.size());
   std::iota(order.begin(), order.end(), 0);
   value_buffer = order;
-  SortPairs p{key_buffer.data(), key_alt.data(), value_buffer.data(), value_alt.data(), n, 64};
+  SortPairs<Key> p{key_buffer.data(), key_alt.data(), value_buffer.data(), value_alt.data(), n, 8 * int(sizeof(Key))};
   CpuExec::sort_pairs(p, nullptr, 0);
   std::sort(order.begin(), order.end(), [&](Index a, Index b) { return keys[std::size_t(a)] < keys[std::size_t(b)]; });
-  std::vector<std::uint64_t> want(keys.size());
+  std::vector<Key> want(keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) want[i] = keys[std::size_t(order[i])];
-  EXPECT_EQ(std::vector<std::uint64_t>(p.keys, p.keys + n), want) << "n = " << n;
+  EXPECT_EQ(std::vector<Key>(p.keys, p.keys + n), want) << "n = " << n;
   EXPECT_EQ(std::vector<Index>(p.values, p.values + n), order) << "n = " << n;
 }
 
@@ -47,6 +48,26 @@ TEST(CpuSort, MatchesStdSort) {
   std::vector<std::uint64_t> sorted = cell_keys(30000, 1000, 10);
   std::sort(sorted.begin(), sorted.end());
   expect_sorted_like_std(sorted);
+}
+
+// 32-bit keys (a cell alone, or an id), with repeats: the sort is stable, so
+// equal keys keep their order (the values say so: std::sort's comparison
+// falls back on them).
+TEST(CpuSort, ThirtyTwoBitKeysStable) {
+  std::mt19937 rng(11);
+  for (std::size_t n : {0, 1, 3, 4096, 70001}) {
+    std::vector<std::uint32_t> keys(n);
+    for (auto& k : keys) k = std::uint32_t(rng() % 5000) << (n % 2 == 0 ? 20 : 0);
+    const Index m = Index(n);
+    std::vector<std::uint32_t> key_buffer = keys, key_alt(n);
+    std::vector<Index> values(n), value_alt(n), order(n);
+    std::iota(values.begin(), values.end(), 0);
+    std::iota(order.begin(), order.end(), 0);
+    SortPairs<std::uint32_t> p{key_buffer.data(), key_alt.data(), values.data(), value_alt.data(), m, 32};
+    CpuExec::sort_pairs(p, nullptr, 0);
+    std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) { return keys[std::size_t(a)] < keys[std::size_t(b)]; });
+    EXPECT_EQ(std::vector<Index>(p.values, p.values + m), order) << "n = " << n;
+  }
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // estimate_memory (engine/memory_estimate.hpp) against the layout listed by
 // hand, and against the high-water mark of a run's allocations on the CPU
 // backend (whose arrays are the GPU's, less CUB's storage, plus its own for
-// computing each pair once: MemoryEstimate::cpu_pair_bytes): a persistent
+// computing each pair once and its wider sort keys: MemoryEstimate::cpu_extra_bytes): a persistent
 // array the estimate does not know of, or a transient one that stays (sort
 // keys, fp64 list references), shows as bytes per particle it cannot account for.
 #include <gtest/gtest.h>
@@ -49,8 +49,11 @@ constexpr double kCpuPairEntry = 4 + 24 + 1;
 // force and torque 12 each; per list entry a touching flag and a spring
 // (13), a surface row's index (4) and no row (no wall is near); Verlet list offsets 4, fp32 reference 12,
 // 12 entries of 4; the cell order 4; staging: at a rebuild the kept
-// contacts, 12 of a partner id and a spring (192; without history a
-// position's 24); beside them the origin rows and the kept offsets, 4 each.
+// contacts, 12 of a partner id and a spring (192; without history a GPU's
+// cell sort, 32-bit keys of the cell alone and their second buffer and the
+// indices' second buffer, 12, more than a re-sort's gather of one fp64
+// component; the CPU's keys hold the ids, 64 bits: 20); beside them the
+// origin rows and the kept offsets, 4 each.
 TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   const MemoryEstimate m = estimate_memory(lattice_scene(2, kFriction));
   EXPECT_EQ(m.field_bytes, 4 + 1 + 1 + 3 * 4 + 3 * 24);
@@ -61,7 +64,7 @@ TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   EXPECT_EQ(m.staging_bytes, 12 * (4 + 12));
   EXPECT_EQ(m.rebuild_bytes, 4 + 4);
   EXPECT_EQ(m.bytes_per_particle, 90 + 24 + 160 + 68 + 192 + 8);
-  EXPECT_EQ(m.cpu_pair_bytes, 12 * kCpuPairEntry);
+  EXPECT_EQ(m.cpu_extra_bytes, 12 * kCpuPairEntry);
   // A small scene's GPU run keeps the last build's tables: offsets 4, 12
   // entries of an index and a pair entry (4 + 13), origin and kept offsets 8.
   EXPECT_EQ(m.gpu_kept_bytes, double(particle_count(lattice_scene(2, kFriction))) * (4 + 12 * 17 + 8));
@@ -69,7 +72,9 @@ TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   EXPECT_EQ(none.history_bytes, 0);
   EXPECT_EQ(none.force_bytes, 12);  // no torque without friction
   EXPECT_EQ(none.field_bytes, 90 - 24);  // nor a spin
-  EXPECT_EQ(none.bytes_per_particle, 66 + 12 + 68 + 24);
+  EXPECT_EQ(none.staging_bytes, 4 + 4 + 4);
+  EXPECT_EQ(none.bytes_per_particle, 66 + 12 + 68 + 12);
+  EXPECT_EQ(none.cpu_extra_bytes, 12 * kCpuPairEntry + 20 - 12);
   EXPECT_EQ(none.gpu_kept_bytes, 0);  // no pair tables to keep
   SceneSpec spinning = lattice_scene(2, 0);
   spinning.particles.front().angular_velocity = {0, 0, 1};
@@ -118,15 +123,18 @@ Measured measure(const SceneSpec& scene, long long steps) {
 // The run's peak against the estimate with the lattice's own list entries
 // (the estimate assumes 12), each 4 bytes in the list, with friction 13 of
 // pair history, and kCpuPairEntry of the CPU's own, and its own touching contacts (the estimate assumes 12)
-// kept in the staging buffer at a rebuild, 16 bytes each. A static bed is
-// never re-sorted, so its staging buffer holds the sort's 20 bytes, and
+// kept in the staging buffer at a rebuild, 16 bytes each. The CPU's sort
+// holds 20 bytes per particle in the staging buffer (64-bit keys with ids,
+// their second buffer, the indices' second buffer). A static bed
 // builds its list once (nothing to carry over); a bed drifting as one body
 // (the same neighbours throughout) rebuilds its list every 20 steps and is
-// re-sorted at the rebuild after step 25, so the buffer holds a position's
-// 24, and at each rebuild the origin rows and the kept offsets wait beside
-// the lists. A sort buffer held apart from the staging buffer, a buffer
-// grown by copying (its old and new storage at once), or the old list's
-// table held beside the new shows as 20 bytes or more.
+// re-sorted at the rebuild after step 25, a component of a field at a time
+// where the staging buffer holds less than a whole field (8 bytes per
+// particle, not a position's 24), and at each rebuild the origin rows and
+// the kept offsets wait beside the lists. A sort buffer held apart from the
+// staging buffer, a buffer grown by copying (its old and new storage at
+// once), a re-sort's whole-field gather (4 more) or the old list's table
+// held beside the new shows as 4 bytes or more.
 TEST(MemoryEstimate, MatchesTheRunsPeakOnTheCpu) {
   const int side = 16;
   const double entries = 6.0 - 6.0 / side;
@@ -143,7 +151,7 @@ TEST(MemoryEstimate, MatchesTheRunsPeakOnTheCpu) {
       }
       const double missing = kEstimatedListEntries - entries, pair_entry = effects != 0 ? 1 + 12 : 0;
       EXPECT_EQ(got.contacts_per_particle, 0);  // so the kept contacts take no room
-      const double staging = drift ? 24 : 20;
+      const double staging = 20;
       double expected = m.bytes_per_particle - missing * (4 + pair_entry) - (m.staging_bytes - staging) +
                         entries * kCpuPairEntry;
       // Its one build (the kept offsets beside the new list) comes before the
@@ -202,7 +210,7 @@ TEST(MemoryEstimate, AWiderSkinIsCounted) {
   const double grown = measure(wide, 5).bytes_per_particle - measure(narrow, 5).bytes_per_particle;
   EXPECT_NEAR(grown, (15.6 - 5.5) * (4 + 13 + kCpuPairEntry), 20);
   const MemoryEstimate a = estimate_memory(narrow), b = estimate_memory(wide);
-  EXPECT_GE(b.bytes_per_particle + b.cpu_pair_bytes - a.bytes_per_particle - a.cpu_pair_bytes, grown);
+  EXPECT_GE(b.bytes_per_particle + b.cpu_extra_bytes - a.bytes_per_particle - a.cpu_extra_bytes, grown);
 }
 
 // At a snapshot or checkpoint the particles touching a wall are selected with

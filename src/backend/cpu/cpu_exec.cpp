@@ -18,17 +18,18 @@ Index chunk_begin(Index n, int t, int threads) { return Index(std::int64_t(n) * 
 }  // namespace
 
 // Least-significant-digit radix sort, 11 bits a pass: stable, O(N) per pass,
-// and identical on every machine and for any thread count (the keys are
-// unique, so the sorted order is too). Each thread counts and scatters its
+// and identical on every machine and for any thread count (equal keys keep
+// their order, so the sorted order is one). Each thread counts and scatters its
 // own contiguous share of the items; the bucket offsets are laid out bucket
 // by bucket, thread by thread, which keeps the scatter stable. Keys already
 // in order (the common case between two reorders of a slowly moving bed)
 // cost one read; digits in which no two keys differ (the unused high bits of
 // ids and cells) are skipped.
-void CpuExec::sort_pairs(SortPairs& p, void* /*storage*/, std::size_t /*bytes*/) {
+template <class Key>
+void CpuExec::sort_pairs(SortPairs<Key>& p, void* /*storage*/, std::size_t /*bytes*/) {
   const Index n = p.n;
-  std::uint64_t* keys = p.keys;
-  std::uint64_t* keys_out = p.keys_alt;
+  Key* keys = p.keys;
+  Key* keys_out = p.keys_alt;
   Index* values = p.values;
   Index* values_out = p.values_alt;
   if (n <= 1) return;
@@ -77,5 +78,8 @@ void CpuExec::sort_pairs(SortPairs& p, void* /*storage*/, std::size_t /*bytes*/)
   p.keys = keys;
   p.values = values;
 }
+
+template void CpuExec::sort_pairs<std::uint32_t>(SortPairs<std::uint32_t>&, void*, std::size_t);
+template void CpuExec::sort_pairs<std::uint64_t>(SortPairs<std::uint64_t>&, void*, std::size_t);
 
 }  // namespace gs

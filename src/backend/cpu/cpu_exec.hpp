@@ -94,8 +94,12 @@ struct CpuExec {
                                const ParticleId* id, Index n_owned);
 
   // Sorts p's keys ascending, carrying the values along (no storage of its own).
-  static std::size_t sort_storage_bytes(Index /*n*/, int /*key_bits*/) { return 0; }
-  static void sort_pairs(SortPairs& p, void* /*storage*/, std::size_t /*bytes*/);
+  template <class Key>
+  static std::size_t sort_storage_bytes(Index /*n*/, int /*key_bits*/) {
+    return 0;
+  }
+  template <class Key>
+  static void sort_pairs(SortPairs<Key>& p, void* /*storage*/, std::size_t /*bytes*/);
   static void synchronize() {}
 };
 

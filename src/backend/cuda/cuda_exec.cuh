@@ -109,8 +109,9 @@ struct CudaExec {
   }
 
   // Bytes of CUB's own storage for sort_pairs of n keys.
+  template <class Key>
   static std::size_t sort_storage_bytes(Index n, int key_bits) {
-    cub::DoubleBuffer<std::uint64_t> keys(nullptr, nullptr);
+    cub::DoubleBuffer<Key> keys(nullptr, nullptr);
     cub::DoubleBuffer<Index> values(nullptr, nullptr);
     std::size_t bytes = 0;
     GS_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, keys, values, n, 0, key_bits));
@@ -118,8 +119,9 @@ struct CudaExec {
   }
   // Sorts p's keys ascending, carrying the values along, with `bytes` of
   // storage (sort_storage_bytes) at `storage`.
-  static void sort_pairs(SortPairs& p, void* storage, std::size_t bytes) {
-    cub::DoubleBuffer<std::uint64_t> keys(p.keys, p.keys_alt);
+  template <class Key>
+  static void sort_pairs(SortPairs<Key>& p, void* storage, std::size_t bytes) {
+    cub::DoubleBuffer<Key> keys(p.keys, p.keys_alt);
     cub::DoubleBuffer<Index> values(p.values, p.values_alt);
     GS_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(storage, bytes, keys, values, p.n, 0, p.key_bits));
     p.keys = keys.Current();
