@@ -78,6 +78,26 @@ class PairCarry final : public StoreObserver, public ListFollower {
 
  private:
   void detach(const ParticleStore& s);
+  // The kept fields' arrays of a table, null where the run keeps none.
+  FieldArrays<Real> field_arrays(PairEntries<Real>& e) const {
+    FieldArrays<Real> a;
+#define GS_POINT_AT_FIELD(name, value, bit) \
+  if (st_.kept & (bit)) a.name = e.name.data();
+    GS_HISTORY_FIELDS(GS_POINT_AT_FIELD)
+#undef GS_POINT_AT_FIELD
+    return a;
+  }
+  // The same of the kept table in the staging buffer at `base` (kept_).
+  FieldArrays<Real> kept_fields(unsigned char* base) const {
+    FieldArrays<Real> a;
+    int f = 0;
+#define GS_POINT_AT_FIELD(name, value, bit)                                          \
+  if (st_.kept & (bit)) a.name = reinterpret_cast<value<Real>*>(base + kept_.field[f]); \
+  ++f;
+    GS_HISTORY_FIELDS(GS_POINT_AT_FIELD)
+#undef GS_POINT_AT_FIELD
+    return a;
+  }
   // Whether this build frees the detached tables (set by list_building):
   // always on the CPU, and on a GPU where they hold kKeepDetachedBelow
   // bytes or more (engine/pair_history.hpp). Below that a GPU keeps them,
@@ -99,7 +119,7 @@ void PairCarry<Exec, Real>::detach(const ParticleStore& s) {
   if (!finder_.list_valid(s)) throw std::logic_error("the store changed behind the pair history's back");
   h.attached = false;
   VerletList& v = finder_.verlet();
-  Exec::parallel_for(v.n_owned, ListToIds{v.begin.data(), v.list.data(), s.id.data()});
+  Exec::parallel_for_lanes(v.n_owned, kRowLanes, ListToIds{v.begin.data(), v.list.data(), s.id.data()});
   h.carried_begin.swap(v.begin);
   h.carried_partner.swap(v.list);
   h.carried.swap(h.current);
@@ -131,15 +151,10 @@ void PairCarry<Exec, Real>::list_building(const ParticleStore& s) {
   kept_ = KeptLayout::of<Real>(total, st_.kept);
   st_.staging.resize_discarding(kept_.total);
   unsigned char* base = st_.staging.data();
-  Exec::parallel_for(n, KeepPartners{contacts, h.kept_begin.data(), reinterpret_cast<ParticleId*>(base + kept_.partner)});
-  int f = 0;
-  for_each_history_field(h.carried, h.pending, [&](const char*, unsigned bit, const auto& carried, const auto& pending) {
-    using T = typename std::decay_t<decltype(carried)>::value_type;
-    if (st_.kept & bit)
-      Exec::parallel_for(n, KeepField<T>{contacts, h.kept_begin.data(), carried.data(), pending.data(),
-                                         reinterpret_cast<T*>(base + kept_.field[f])});
-    ++f;
-  });
+  ParticleId* kept_partner = reinterpret_cast<ParticleId*>(base + kept_.partner);
+  Exec::parallel_for_lanes(n, kRowLanes,
+                           KeepContacts<Real>{contacts, h.kept_begin.data(), kept_partner, kept_fields(base),
+                                              field_arrays(h.carried), field_arrays(h.pending)});
   free_detached_ = Exec::backend == Backend::cpu || h.detached_bytes() >= kKeepDetachedBelow;
   h.drop_detached(free_detached_);
 }
@@ -153,17 +168,10 @@ void PairCarry<Exec, Real>::list_built(const ParticleStore& s) {
   const VerletList& v = finder_.verlet();
   h.current.resize_discarding(v.list.size(), st_.kept);
   unsigned char* base = st_.staging.data();
-  const KeptSources sources{v.begin.data(), v.list.data(), s.id.data(), h.kept_begin.data(),
-                            reinterpret_cast<const ParticleId*>(base + kept_.partner)};
-  Exec::parallel_for(v.n_owned, MergeKeptTouching{sources, h.current.touching.data()});
-  int f = 0;
-  for_each_history_field(h.current, [&](const char*, unsigned bit, auto& to) {
-    using T = typename std::decay_t<decltype(to)>::value_type;
-    if (st_.kept & bit)
-      Exec::parallel_for(v.n_owned, MergeKeptField<T>{sources, reinterpret_cast<const T*>(base + kept_.field[f]),
-                                                      to.data()});
-    ++f;
-  });
+  const ParticleId* kept_partner = reinterpret_cast<const ParticleId*>(base + kept_.partner);
+  Exec::parallel_for_lanes(v.n_owned, kRowLanes,
+                           MergeKept<Real>{v.begin.data(), v.list.data(), s.id.data(), h.kept_begin.data(), kept_partner,
+                                           kept_fields(base), h.current.touching.data(), field_arrays(h.current)});
   if (free_detached_) h.kept_begin = DeviceArray<ListOffset>(Exec::backend);
   h.attached = true;
 }

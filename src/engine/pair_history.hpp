@@ -36,6 +36,7 @@
 #include "contact/pair_springs.hpp"
 #include "core/fault.hpp"
 #include "core/history_layout.hpp"
+#include "core/one_lane.hpp"
 #include "core/particle_fields.hpp"
 #include "neighbor/verlet_list.hpp"
 
@@ -173,13 +174,28 @@ struct PairHistory {
   }
 };
 
-// The old list's entries of owned particle i, from store indices to ids.
+// Lanes per particle of a build's passes over the rows of the pair tables
+// on a GPU (Exec::parallel_for_lanes; ListToIds here, engine/pair_keep.hpp):
+// lane r takes entries r, r + 8, ... of its particle's row, so a warp's
+// reads and writes of the tables are runs of consecutive entries, not one
+// row per lane 16-72 bytes apart (docs/PERFORMANCE.md, "A rebuild's copies
+// by groups of lanes"). Rows are a few to a few dozen entries.
+constexpr int kRowLanes = 8;
+// A launch hint, as the force kernel's (the passes need few registers).
+constexpr int kRowPassBlocksPerSM = 4;
+
+// The old list's entries of owned particle i, from store indices to ids; on
+// a GPU by a group of kRowLanes lanes.
 struct ListToIds {
+  static constexpr int kMinBlocksPerSM = kRowPassBlocksPerSM;
   const ListOffset* begin;
   Index* list;
   const ParticleId* id;
-  GS_HD void operator()(Index i) const {
-    for (ListOffset k = begin[i]; k < begin[i + 1]; ++k) list[k] = static_cast<Index>(id[list[k]]);
+  GS_HD void operator()(Index i) const { in_group(i, OneLane{}); }
+  template <class Group>
+  GS_HD void in_group(Index i, const Group& g) const {
+    for (ListOffset k = begin[i] + ListOffset(g.rank); k < begin[i + 1]; k += ListOffset(g.size))
+      list[k] = static_cast<Index>(id[list[k]]);
   }
 };
 

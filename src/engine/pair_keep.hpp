@@ -19,6 +19,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "core/bits.hpp"
+#include "core/one_lane.hpp"
 #include "engine/pair_history.hpp"
 
 namespace gs {
@@ -76,30 +78,74 @@ struct CountKept {
   }
 };
 
-// Their partner ids at kept[begin[i], begin[i + 1]).
-struct KeepPartners {
-  DetachedContacts contacts;
-  const ListOffset* begin;
-  ParticleId* to;
-  GS_HD void operator()(Index i) const {
-    ListOffset c = begin[i];
-    contacts.for_each(i, [&](int, std::size_t, ParticleId partner) { to[c++] = partner; });
-  }
+// One pointer per history field (GS_HISTORY_FIELDS), null where the run
+// keeps none: the arrays of a table whose entries a pass copies whole.
+template <class Real>
+struct FieldArrays {
+#define GS_FIELD_POINTER(name, value, bit) value<Real>* name = nullptr;
+  GS_HISTORY_FIELDS(GS_FIELD_POINTER)
+#undef GS_FIELD_POINTER
 };
 
-// Their values of one history field.
-template <class T>
-struct KeepField {
+// to's entry k = from's entry at, each kept field.
+template <class Real>
+GS_HD GS_INLINE void copy_entry(const FieldArrays<Real>& to, std::size_t k, const FieldArrays<Real>& from,
+                                std::size_t at) {
+#define GS_COPY_FIELD(name, value, bit) \
+  if (to.name) to.name[k] = from.name[at];
+  GS_HISTORY_FIELDS(GS_COPY_FIELD)
+#undef GS_COPY_FIELD
+}
+
+template <class Real>
+GS_HD GS_INLINE void zero_entry(const FieldArrays<Real>& to, std::size_t k) {
+#define GS_ZERO_FIELD(name, value, bit) \
+  if (to.name) to.name[k] = value<Real>{};
+  GS_HISTORY_FIELDS(GS_ZERO_FIELD)
+#undef GS_ZERO_FIELD
+}
+
+// The kept table's partner ids and fields of owned particle i, at
+// kept[begin[i], begin[i + 1]), in one pass. A carried row's touching
+// entries are found by the group's vote, each lane placing its own after
+// those of the lanes before it; a pending row (an arrival's: rare) is its
+// leader's alone.
+template <class Real>
+struct KeepContacts {
+  static constexpr int kMinBlocksPerSM = kRowPassBlocksPerSM;
   DetachedContacts contacts;
   const ListOffset* begin;
-  const T* carried;
-  const T* pending;
-  T* to;
-  GS_HD void operator()(Index i) const {
+  ParticleId* partner;
+  FieldArrays<Real> to, carried, pending;
+  GS_HD void operator()(Index i) const { in_group(i, OneLane{}); }
+
+  template <class Group>
+  GS_HD void in_group(Index i, const Group& g) const {
+    const DetachedTables& t = contacts.tables;
+    const Index o = t.origin_of(i);
     ListOffset c = begin[i];
-    contacts.for_each(i, [&](int source, std::size_t at, ParticleId) {
-      to[c++] = source == kFromCarried ? carried[at] : pending[at];
-    });
+    if (o >= kPendingBase) {
+      if (g.leader())
+        contacts.for_each(i, [&](int, std::size_t at, ParticleId p) {
+          partner[c] = p;
+          copy_entry(to, c, pending, at);
+          ++c;
+        });
+      return;
+    }
+    if (o < 0) return;
+    const ListOffset end = t.carried_begin[o + 1];
+    for (ListOffset first = t.carried_begin[o]; first < end; first += ListOffset(g.size)) {
+      const ListOffset e = first + ListOffset(g.rank);
+      const bool touching = e < end && t.carried_touching[e] != 0;
+      const unsigned votes = g.ballot(touching);
+      if (touching) {
+        const ListOffset at = c + ListOffset(bit_count(votes & ((1u << g.rank) - 1u)));
+        partner[at] = static_cast<ParticleId>(t.carried_partner[e]);
+        copy_entry(to, at, carried, e);
+      }
+      c += ListOffset(bit_count(votes));
+    }
   }
 };
 
@@ -128,42 +174,39 @@ struct KeptLayout {
   }
 };
 
-// The kept entry of each new list entry of owned particle i: f(k, at), at
-// the kept entry of the same partner, or -1 (none: zero springs). Both are
-// in ascending partner id: a merge.
-struct KeptSources {
+// The new list's entries of owned particle i take their touching flag and
+// fields from the kept contact of the same partner, or start from zero where
+// there is none; both rows are in ascending partner id, so each lane merges
+// its own entries (r, r + size, ...) with the kept row, from where its last
+// entry's search ended.
+template <class Real>
+struct MergeKept {
+  static constexpr int kMinBlocksPerSM = kRowPassBlocksPerSM;
   const ListOffset* begin;  // the new list
   const Index* list;
   const ParticleId* id;
   const ListOffset* kept_begin;
   const ParticleId* kept_partner;
-  template <class F>
-  GS_HD void for_each(Index i, const F& f) const {
+  FieldArrays<Real> kept;
+  std::uint8_t* touching;  // the new list's entries
+  FieldArrays<Real> to;
+  GS_HD void operator()(Index i) const { in_group(i, OneLane{}); }
+
+  template <class Group>
+  GS_HD void in_group(Index i, const Group& g) const {
     ListOffset c = kept_begin[i];
     const ListOffset c_end = kept_begin[i + 1];
-    for (ListOffset k = begin[i]; k < begin[i + 1]; ++k) {
+    for (ListOffset k = begin[i] + ListOffset(g.rank); k < begin[i + 1]; k += ListOffset(g.size)) {
       const ParticleId partner = id[list[k]];
       while (c < c_end && kept_partner[c] < partner) ++c;
-      f(k, c < c_end && kept_partner[c] == partner ? std::int64_t(c) : std::int64_t(-1));
+      if (c < c_end && kept_partner[c] == partner) {
+        touching[k] = 1;
+        copy_entry(to, k, kept, c);
+      } else {
+        touching[k] = 0;
+        zero_entry(to, k);
+      }
     }
-  }
-};
-
-template <class T>
-struct MergeKeptField {
-  KeptSources sources;
-  const T* kept;
-  T* to;
-  GS_HD void operator()(Index i) const {
-    sources.for_each(i, [&](ListOffset k, std::int64_t at) { to[k] = at >= 0 ? kept[at] : T{}; });
-  }
-};
-
-struct MergeKeptTouching {
-  KeptSources sources;
-  std::uint8_t* to;
-  GS_HD void operator()(Index i) const {
-    sources.for_each(i, [&](ListOffset k, std::int64_t at) { to[k] = at >= 0 ? std::uint8_t(1) : std::uint8_t(0); });
   }
 };
 

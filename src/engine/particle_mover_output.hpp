@@ -37,13 +37,15 @@ void rows_to_host(std::vector<U>& out, Index n, std::size_t width, HostPins& pin
   if constexpr (Exec::backend == Backend::cpu) {
     rows(0, n, out.data());
   } else {
-    // Chunks of at most 64 MiB: few enough that the launches and waits are
-    // negligible, small enough that the bounce buffer stays small. The
-    // staging array keeps its storage when it is larger (a re-sort sizes it
-    // for the widest field): no new device memory.
-    constexpr std::size_t kChunkBytes = std::size_t(64) << 20;
+    // Chunks of 8 to 64 MiB: few enough that the launches and waits are
+    // negligible, small enough that the bounce buffer stays small; within
+    // that, as large as the staging array already is (it keeps its storage,
+    // sized by the run's sorts, kept contacts or re-sorts), so that output
+    // adds no device memory where the run has 8 MiB of staging or more.
+    constexpr std::size_t kLeastChunkBytes = std::size_t(8) << 20, kMostChunkBytes = std::size_t(64) << 20;
+    const std::size_t chunk_most = std::clamp(staging.bytes(), kLeastChunkBytes, kMostChunkBytes);
     const std::size_t row_bytes = width * sizeof(U);
-    const Index chunk = Index(std::max<std::size_t>(1, std::min<std::size_t>(std::size_t(n), kChunkBytes / row_bytes)));
+    const Index chunk = Index(std::max<std::size_t>(1, std::min<std::size_t>(std::size_t(n), chunk_most / row_bytes)));
     const std::size_t chunk_bytes = std::size_t(chunk) * row_bytes;
     staging.resize_discarding(chunk_bytes);
     U* to = reinterpret_cast<U*>(staging.data());

@@ -3,14 +3,18 @@
 // in ascending partner id, and out of a pending row (as it arrived, in any
 // order, with surface contacts and empty entries) sorted by partner id with
 // the surface contacts and empties left out; the new list's entries then
-// find the springs of their partner, and zero where it did not touch.
+// find the springs of their partner, and zero where it did not touch. Each
+// pass also by groups of 1 to 8 host threads playing a GPU's lanes
+// (support/thread_lanes.hpp): the same tables.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
 #include "backend/cpu/cpu_exec.hpp"
 #include "engine/pair_keep.hpp"
+#include "support/thread_lanes.hpp"
 
 namespace gs::test {
 namespace {
@@ -23,9 +27,11 @@ struct Detached {
   std::vector<ListOffset> carried_begin{0, 2, 6};
   std::vector<Index> carried_partner{11, 12, 3, 5, 8, 9};
   std::vector<std::uint8_t> carried_touching{1, 1, 1, 0, 1, 0};
-  std::vector<float> carried_spring{-1, -2, 30, 0, 80, 0};
+  std::vector<float> carried_spring{-1, -2, 30, 0, 80, 0};  // a scalar field (peak_overlap's place)
+  std::vector<Vec3f> carried_tangential{{-1, 0, 0}, {-2, 0, 0}, {3, 1, 0}, {}, {8, 0, 1}, {}};
   std::vector<ParticleId> pending_partner{7, kWallPartnerBase + 2, 4, kNoPartner, 6};
   std::vector<float> pending_spring{70, 99, 40, 0, 60};
+  std::vector<Vec3f> pending_tangential{{7, 0, 0}, {9, 9, 9}, {4, 0, 0}, {}, {6, 0, 0}};
   DetachedContacts contacts() const {
     const DetachedTables tables{origin.data(),          Index(origin.size()),    carried_begin.data(),
                                 carried_partner.data(), carried_touching.data(), pending_partner.data()};
@@ -42,17 +48,82 @@ std::vector<ListOffset> counted(const Detached& d, Index n) {
   return begin;
 }
 
+// Runs pass f over particles [0, n): each particle by one lane (operator()),
+// then by groups of 2, 4 and 8 lanes; `check` after each.
+template <class F, class Reset, class Check>
+void each_way(Index n, const F& f, const Reset& reset, const Check& check) {
+  reset();
+  CpuExec::parallel_for(n, f);
+  check(1);
+  for (int lanes : {2, 4, 8}) {
+    reset();
+    for (Index i = 0; i < n; ++i) run_lanes(lanes, [&](const ThreadLane& g) { f.in_group(i, g); });
+    check(lanes);
+  }
+}
+
 TEST(PairKeep, TouchingContactsInAscendingPartnerId) {
-  const Detached d;
+  Detached d;
   const std::vector<ListOffset> begin = counted(d, 3);
   EXPECT_EQ(begin, (std::vector<ListOffset>{0, 2, 5, 5}));  // 2 carried, 3 pending, none
   std::vector<ParticleId> partner(5);
   std::vector<float> spring(5);
-  CpuExec::parallel_for(3, KeepPartners{d.contacts(), begin.data(), partner.data()});
-  CpuExec::parallel_for(
-      3, KeepField<float>{d.contacts(), begin.data(), d.carried_spring.data(), d.pending_spring.data(), spring.data()});
-  EXPECT_EQ(partner, (std::vector<ParticleId>{3, 8, 4, 6, 7}));
-  EXPECT_EQ(spring, (std::vector<float>{30, 80, 40, 60, 70}));
+  std::vector<Vec3f> tangential(5);
+  FieldArrays<float> to, carried, pending;
+  to.peak_overlap = spring.data();
+  to.tangential = tangential.data();
+  carried.peak_overlap = d.carried_spring.data();
+  carried.tangential = d.carried_tangential.data();
+  pending.peak_overlap = d.pending_spring.data();
+  pending.tangential = d.pending_tangential.data();
+  const KeepContacts<float> keep{d.contacts(), begin.data(), partner.data(), to, carried, pending};
+  each_way(
+      3, keep,
+      [&] {
+        std::fill(partner.begin(), partner.end(), 99);
+        std::fill(spring.begin(), spring.end(), -9.0f);
+        std::fill(tangential.begin(), tangential.end(), Vec3f(-9, -9, -9));
+      },
+      [&](int lanes) {
+        EXPECT_EQ(partner, (std::vector<ParticleId>{3, 8, 4, 6, 7})) << lanes << " lanes";
+        EXPECT_EQ(spring, (std::vector<float>{30, 80, 40, 60, 70})) << lanes << " lanes";
+        const std::vector<float> x{3, 8, 4, 6, 7}, y{1, 0, 0, 0, 0}, z{0, 1, 0, 0, 0};
+        for (std::size_t k = 0; k < 5; ++k) {
+          EXPECT_EQ(tangential[k].x, x[k]) << lanes << " lanes, entry " << k;
+          EXPECT_EQ(tangential[k].y, y[k]) << lanes << " lanes, entry " << k;
+          EXPECT_EQ(tangential[k].z, z[k]) << lanes << " lanes, entry " << k;
+        }
+      });
+}
+
+// A carried row longer than the lanes (10 entries, touching at 0, 3, 4, 8
+// and 9): a group of 2 or 4 lanes takes several rounds, and the touching
+// entries of a round land after those of the rounds before.
+TEST(PairKeep, LongRowsTakeSeveralRoundsOfLanes) {
+  Detached d;
+  d.origin = {0};
+  d.carried_begin = {0, 10};
+  d.carried_partner = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
+  d.carried_touching = {1, 0, 0, 1, 1, 0, 0, 0, 1, 1};
+  d.carried_spring = {10, 0, 0, 40, 50, 0, 0, 0, 90, 100};
+  const std::vector<ListOffset> begin = counted(d, 1);
+  ASSERT_EQ(begin, (std::vector<ListOffset>{0, 5}));
+  std::vector<ParticleId> partner(5);
+  std::vector<float> spring(5);
+  FieldArrays<float> to, carried, pending;
+  carried.peak_overlap = d.carried_spring.data();
+  to.peak_overlap = spring.data();
+  const KeepContacts<float> keep{d.contacts(), begin.data(), partner.data(), to, carried, pending};
+  each_way(
+      1, keep,
+      [&] {
+        std::fill(partner.begin(), partner.end(), 0);
+        std::fill(spring.begin(), spring.end(), 0.0f);
+      },
+      [&](int lanes) {
+        EXPECT_EQ(partner, (std::vector<ParticleId>{1, 4, 5, 9, 10})) << lanes << " lanes";
+        EXPECT_EQ(spring, (std::vector<float>{10, 40, 50, 90, 100})) << lanes << " lanes";
+      });
 }
 
 // The new list of particle 0: partners 2, 3, 5, 8 (5 was listed, not
@@ -63,14 +134,47 @@ TEST(PairKeep, NewEntriesFindTheirPartnersSprings) {
   const std::vector<Index> list{2, 3, 5, 8, 4, 7, 3};
   const std::vector<ListOffset> kept_begin{0, 2, 5, 5};
   const std::vector<ParticleId> kept_partner{3, 8, 4, 6, 7};
-  const std::vector<float> kept_spring{30, 80, 40, 60, 70};
-  const KeptSources sources{list_begin.data(), list.data(), id.data(), kept_begin.data(), kept_partner.data()};
-  std::vector<float> spring(7, -7);
-  std::vector<std::uint8_t> touching(7, 7);
-  CpuExec::parallel_for(3, MergeKeptField<float>{sources, kept_spring.data(), spring.data()});
-  CpuExec::parallel_for(3, MergeKeptTouching{sources, touching.data()});
-  EXPECT_EQ(spring, (std::vector<float>{0, 30, 0, 80, 40, 70, 0}));
-  EXPECT_EQ(touching, (std::vector<std::uint8_t>{0, 1, 0, 1, 1, 1, 0}));
+  std::vector<float> kept_spring{30, 80, 40, 60, 70};
+  std::vector<Vec3f> kept_tangential{{3, 0, 0}, {8, 0, 0}, {4, 0, 0}, {6, 0, 0}, {7, 0, 0}};
+  std::vector<float> spring(7);
+  std::vector<Vec3f> tangential(7);
+  std::vector<std::uint8_t> touching(7);
+  FieldArrays<float> kept, to;
+  kept.peak_overlap = kept_spring.data();
+  kept.tangential = kept_tangential.data();
+  to.peak_overlap = spring.data();
+  to.tangential = tangential.data();
+  const MergeKept<float> merge{list_begin.data(), list.data(), id.data(), kept_begin.data(), kept_partner.data(),
+                               kept, touching.data(), to};
+  each_way(
+      3, merge,
+      [&] {
+        std::fill(spring.begin(), spring.end(), -7.0f);
+        std::fill(tangential.begin(), tangential.end(), Vec3f(-7, -7, -7));
+        std::fill(touching.begin(), touching.end(), std::uint8_t(7));
+      },
+      [&](int lanes) {
+        EXPECT_EQ(spring, (std::vector<float>{0, 30, 0, 80, 40, 70, 0})) << lanes << " lanes";
+        EXPECT_EQ(touching, (std::vector<std::uint8_t>{0, 1, 0, 1, 1, 1, 0})) << lanes << " lanes";
+        const std::vector<float> x{0, 3, 0, 8, 4, 7, 0};
+        for (std::size_t k = 0; k < 7; ++k) {
+          EXPECT_EQ(tangential[k].x, x[k]) << lanes << " lanes, entry " << k;
+          EXPECT_EQ(tangential[k].y, 0) << lanes << " lanes, entry " << k;
+        }
+      });
+}
+
+// The old list's entries become the partners' ids, by any number of lanes.
+TEST(PairKeep, ListEntriesBecomeIds) {
+  const std::vector<ParticleId> id{40, 10, 30, 20, 50};
+  const std::vector<ListOffset> begin{0, 3, 3, 5};
+  const std::vector<Index> list{1, 2, 4, 0, 3}, want{10, 30, 50, 40, 20};
+  for (int lanes : {1, 2, 4, 8}) {
+    std::vector<Index> entries = list;
+    const ListToIds to_ids{begin.data(), entries.data(), id.data()};
+    for (Index i = 0; i < 3; ++i) run_lanes(lanes, [&](const ThreadLane& g) { to_ids.in_group(i, g); });
+    EXPECT_EQ(entries, want) << lanes << " lanes";
+  }
 }
 
 // A scan past 2^32 - 1 entries would wrap the 32-bit offsets: refused.
