@@ -48,7 +48,8 @@ struct CpuExec {
   }
 
   // One thread per i: the GPU's lane groups (backend/cuda/cuda_exec.cuh) serve
-  // scenes too small to fill it; a CPU core runs a particle's contacts in turn.
+  // scenes too small to fill it, and coalesce the reads of table rows; a CPU
+  // core runs a particle's contacts, or its row, in turn.
   template <class F>
   static void parallel_for_lanes(Index n, int /*setting*/, const F& f) {
     parallel_for(n, f);

@@ -96,6 +96,8 @@ struct CudaExec {
   // f over [0, n) with force_lanes(n, setting) lanes per i (F::in_group), or
   // one thread each (parallel_for) where that is one lane: a scene too small
   // to fill the GPU lasts as long as its longest particle, whose work its lanes share.
+  // A setting of 1-32 fixes the lanes (engine/pair_history.hpp, kRowLanes:
+  // the rows of the pair tables, for coalesced reads and writes).
   template <class F>
   static void parallel_for_lanes(Index n, int setting, const F& f) {
     const int lanes = force_lanes(n, setting);
