@@ -148,7 +148,7 @@ void ParticleMover<Exec, Real>::wall_contact_history(const ParticleStore& s, con
   HostHistory& h = into.history;
   h.slots = st_.row_width;
   const bool any = st_.keeps_history() && s.n_owned > 0;
-  // Selected into the staging buffer (a position per owned particle); only
+  // Selected into the staging buffer (an index per owned particle); only
   // the m selected store indices are kept apart, so the output holds 4
   // bytes per particle on a wall beside the run, not 4 per particle.
   Index m = 0;

@@ -410,10 +410,18 @@ ParticleSnapshot Simulation::snapshot() const {
   return s;
 }
 
-void Simulation::snapshot_into(ParticleSnapshot& s, HostPins& pins, bool with_forces) const {
+// Once the step's kernels are done: the owned particles' store indices in
+// ascending id order, made on the backend (engine/owned_id_order.hpp), which
+// every copy of fields in id order follows.
+DeviceArray<Index> Simulation::owned_id_order_on_backend() const {
   kernels_->synchronize();
   DeviceArray<Index> order(store_.backend);
   kernels_->movement().owned_id_order(store_, order);
+  return order;
+}
+
+void Simulation::snapshot_into(ParticleSnapshot& s, HostPins& pins, bool with_forces) const {
+  const DeviceArray<Index> order = owned_id_order_on_backend();
   s.time = time_;
   s.step = step_;
   kernels_->movement().owned_to_host(store_, order.data(), s, pins, with_forces);
@@ -448,9 +456,7 @@ ParticleRecords Simulation::wall_contact_history() const {
 }
 
 void Simulation::wall_contact_history_into(ParticleRecords& r, HostPins& pins) const {
-  kernels_->synchronize();
-  DeviceArray<Index> order(store_.backend);
-  kernels_->movement().owned_id_order(store_, order);
+  const DeviceArray<Index> order = owned_id_order_on_backend();
   kernels_->movement().wall_contact_history(store_, order.data(), r, pins);
 }
 
@@ -462,9 +468,7 @@ HostHistory Simulation::history() const {
 }
 
 void Simulation::history_into(HostHistory& h, HostPins& pins) const {
-  kernels_->synchronize();
-  DeviceArray<Index> order(store_.backend);
-  kernels_->movement().owned_id_order(store_, order);
+  const DeviceArray<Index> order = owned_id_order_on_backend();
   kernels_->movement().history_to_host(store_, order.data(), h, pins);
 }
 
