@@ -58,7 +58,8 @@ bytes_of() {
 import re, sys
 t = open(sys.argv[1]).read()
 exact = re.search(r"memory \(rank 0\): [^,\n]+, ([\d.]+) bytes per owned particle", t)
-if exact: print(exact.group(1)); sys.exit()
+pool = re.search(r"the pool held at most [^,\n]+, ([\d.]+)\)", t)
+if exact: print(exact.group(1) + (f" (the pool {pool.group(1)})" if pool else "")); sys.exit()
 n = re.search(r"(\d+) particles, backend", t)
 m = re.search(r"memory \(rank 0\): ([\d.]+) (B|KiB|MiB|GiB|TiB)", t)
 if not (n and m): print("-"); sys.exit()
@@ -79,8 +80,9 @@ for effects in friction none; do
     timeout 120 "$b/bench/settle_bench" --backend "$backend" --n "$n" --steps 50 --effects "$effects" --digest yes \
       > "$log" 2>&1
     line=$(grep -oE "peak_bytes_per_particle=[0-9.]+ held_bytes_per_particle=[0-9.]+" "$log" | head -1)
+    pool=$(grep -oE "reserved_bytes_per_particle=[0-9.]+" "$log" | head -1)
     digest=$(grep -oE "state_digest=0x[0-9a-f]+" "$log" | head -1)
-    say "$effects $label: ${line:-FAILED ($(tail -1 "$log"))} ${digest}"
+    say "$effects $label: ${line:-FAILED ($(tail -1 "$log"))} ${pool} ${digest}"
   done
 done
 
@@ -133,8 +135,9 @@ for m in $rebuilding; do
   rc=$?
   line=$(grep -oE "peak_bytes_per_particle=[0-9.]+ held_bytes_per_particle=[0-9.]+" "$log" | head -1)
   builds=$(grep -oE "list_builds=[0-9]+" "$log" | head -1)
+  pool=$(grep -oE "reserved_bytes_per_particle=[0-9.]+" "$log" | head -1)
   if [[ $rc == 0 && -n $line ]]; then
-    say "$m particles: RAN, $line $builds"
+    say "$m particles: RAN, $line $builds $pool"
     break
   fi
   say "$m particles: failed (exit $rc): $(grep -iE "error|memory" "$log" | head -2 | tr '\n' ' ')"

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "backend/check.hpp"
+#include "backend/memory.hpp"
 
 namespace gs {
 
@@ -82,6 +83,7 @@ bool select_cuda_device(int local_rank) {
 #ifdef GS_HAVE_CUDA
   const unsigned wait = gpu_wait_flags();
   force_lanes_setting();  // an unknown setting fails here, not at the first step
+  cuda_pool_setting();    // the same
   int count = 0;
   GS_CUDA_CHECK(cudaGetDeviceCount(&count));
   if (count == 0) throw std::runtime_error("no CUDA device to bind local rank " + std::to_string(local_rank) + " to");

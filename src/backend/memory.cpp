@@ -1,6 +1,7 @@
 #define GS_CUDA_HOST_CODE
 #include "backend/memory.hpp"
 
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
@@ -8,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "backend/check.hpp"
 
@@ -40,7 +42,52 @@ void record_free(Backend b, void* p) {
   u.sizes.erase(it);
 }
 
-#ifndef GS_HAVE_CUDA
+#ifdef GS_HAVE_CUDA
+// The current device's stream-ordered pool, made to keep what is freed
+// (backend/memory.hpp says why) the first time this device allocates.
+cudaMemPool_t device_pool() {
+  static std::mutex mutex;
+  static std::vector<bool> configured;
+  int device = 0;
+  GS_CUDA_CHECK(cudaGetDevice(&device));
+  cudaMemPool_t pool = nullptr;
+  GS_CUDA_CHECK(cudaDeviceGetDefaultMemPool(&pool, device));
+  std::lock_guard<std::mutex> lock(mutex);
+  if (configured.size() <= std::size_t(device)) configured.resize(std::size_t(device) + 1, false);
+  if (!configured[std::size_t(device)]) {
+    std::uint64_t keep_all = UINT64_MAX;
+    GS_CUDA_CHECK(cudaMemPoolSetAttribute(pool, cudaMemPoolAttrReleaseThreshold, &keep_all));
+    configured[std::size_t(device)] = true;
+  }
+  return pool;
+}
+
+void* cuda_alloc(std::size_t bytes) {
+  void* p = nullptr;
+  if (!cuda_pool_setting()) {
+    const cudaError_t status = cudaMalloc(&p, bytes);
+    if (status != cudaSuccess)
+      throw_external_error("CUDA", "cudaMalloc", __FILE__, __LINE__,
+                           std::string(cudaGetErrorString(status)) + " (asked for " + std::to_string(bytes) + " bytes)");
+    return p;
+  }
+  const cudaMemPool_t pool = device_pool();
+  cudaError_t status = cudaMallocAsync(&p, bytes, cudaStreamLegacy);
+  if (status == cudaErrorMemoryAllocation) {
+    // Free pages the pool keeps may be what is missing: once the device has
+    // finished with everything freed, they go back to the driver and the
+    // request is made again, so what fits is what cudaMalloc would fit.
+    (void)cudaGetLastError();
+    GS_CUDA_CHECK(cudaDeviceSynchronize());
+    GS_CUDA_CHECK(cudaMemPoolTrimTo(pool, 0));
+    status = cudaMallocAsync(&p, bytes, cudaStreamLegacy);
+  }
+  if (status != cudaSuccess)
+    throw_external_error("CUDA", "cudaMallocAsync", __FILE__, __LINE__,
+                         std::string(cudaGetErrorString(status)) + " (asked for " + std::to_string(bytes) + " bytes)");
+  return p;
+}
+#else
 [[noreturn]] void no_cuda() {
   throw std::runtime_error("this grainstorm was built without the CUDA backend (reconfigure with nvcc available)");
 }
@@ -56,10 +103,7 @@ void* backend_alloc(Backend b, std::size_t bytes) {
     if (!p) throw std::runtime_error("out of host memory allocating " + std::to_string(bytes) + " bytes");
   } else {
 #ifdef GS_HAVE_CUDA
-    const cudaError_t status = cudaMalloc(&p, bytes);
-    if (status != cudaSuccess)
-      throw_external_error("CUDA", "cudaMalloc", __FILE__, __LINE__,
-                           std::string(cudaGetErrorString(status)) + " (asked for " + std::to_string(bytes) + " bytes)");
+    p = cuda_alloc(bytes);
 #else
     no_cuda();
 #endif
@@ -75,7 +119,9 @@ void backend_free(Backend b, void* p) noexcept {
     std::free(p);
   } else {
 #ifdef GS_HAVE_CUDA
-    cudaFree(p);  // a failure here cannot be acted on: the context is already broken
+    // A failure here cannot be acted on: the context is already broken.
+    if (cuda_pool_setting()) cudaFreeAsync(p, cudaStreamLegacy);
+    else cudaFree(p);
 #endif
   }
 }
@@ -135,15 +181,48 @@ void backend_synchronize(Backend b) {
 }
 
 void backend_reset_peak(Backend b) {
-  Usage& u = usage(b);
-  std::lock_guard<std::mutex> lock(u.mutex);
-  u.peak = u.current;
+  {
+    Usage& u = usage(b);
+    std::lock_guard<std::mutex> lock(u.mutex);
+    u.peak = u.current;
+  }
+#ifdef GS_HAVE_CUDA
+  if (b == Backend::cuda && cuda_pool_setting()) {
+    std::uint64_t from_now = 0;  // resets to what the pool holds now
+    GS_CUDA_CHECK(cudaMemPoolSetAttribute(device_pool(), cudaMemPoolAttrReservedMemHigh, &from_now));
+  }
+#endif
 }
 
 std::size_t backend_peak_bytes(Backend b) {
   Usage& u = usage(b);
   std::lock_guard<std::mutex> lock(u.mutex);
   return u.peak;
+}
+
+bool parse_cuda_pool_setting(const char* value) {
+  const std::string s = value ? value : "";
+  if (s.empty() || s == "1") return true;
+  if (s == "0") return false;
+  throw std::invalid_argument("GRAINSTORM_CUDA_POOL must be 1 or 0, got '" + s + "'");
+}
+
+bool cuda_pool_setting() {
+  // Read once: memory allocated one way is freed the same way.
+  static const bool on = parse_cuda_pool_setting(std::getenv("GRAINSTORM_CUDA_POOL"));
+  return on;
+}
+
+std::size_t backend_reserved_peak_bytes(Backend b) {
+  if (b == Backend::cpu) return backend_peak_bytes(b);
+#ifdef GS_HAVE_CUDA
+  if (!cuda_pool_setting()) return backend_peak_bytes(b);
+  std::uint64_t high = 0;
+  GS_CUDA_CHECK(cudaMemPoolGetAttribute(device_pool(), cudaMemPoolAttrReservedMemHigh, &high));
+  return std::size_t(high);
+#else
+  no_cuda();
+#endif
 }
 
 }  // namespace gs

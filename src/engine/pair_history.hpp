@@ -43,10 +43,11 @@
 namespace gs {
 
 // Detached tables that hold fewer bytes than this are kept on a GPU from one
-// build to the next, emptied, instead of freed (engine/pair_carry.hpp): each
-// cudaFree waits for the device, six times a build of mixer case a, which
-// builds every dozen steps. Larger ones are freed before the new list is
-// allocated, so that the two are never held at once.
+// build to the next, emptied, instead of freed (engine/pair_carry.hpp): six
+// frees and allocations a build of mixer case a, which builds every dozen
+// steps, each a host call (and, with GRAINSTORM_CUDA_POOL=0, each free a wait
+// for the device: backend/memory.hpp). Larger ones are freed before the new
+// list is allocated, so that the two are never held at once.
 constexpr std::size_t kKeepDetachedBelow = std::size_t(64) << 20;
 
 // origin values: a carried row, kPendingBase + a pending row, or none.

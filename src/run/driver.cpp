@@ -349,8 +349,14 @@ int advance(const SceneSpec& scene, const RunRequest& a, Transport& transport, S
             100 * x.transfer / sum, 100 * x.unpack / sum, x.rebuilds, x.forwards);
   }
   const double peak = double(backend_peak_bytes(sim.backend()));
-  out.log("peak %s memory (rank 0): %s, %.1f bytes per owned particle\n", backend_name(sim.backend()),
-          human_bytes(peak).c_str(), sim.particle_count() > 0 ? peak / double(sim.particle_count()) : 0.0);
+  const double reserved = double(backend_reserved_peak_bytes(sim.backend()));
+  const double owned = sim.particle_count() > 0 ? double(sim.particle_count()) : 1.0;
+  // What the GPU's pool held from the driver at most, where that differs (backend/memory.hpp).
+  char pool[96] = "";
+  if (reserved != peak)
+    std::snprintf(pool, sizeof pool, " (the pool held at most %s, %.1f)", human_bytes(reserved).c_str(), reserved / owned);
+  out.log("peak %s memory (rank 0): %s, %.1f bytes per owned particle%s\n", backend_name(sim.backend()),
+          human_bytes(peak).c_str(), peak / owned, pool);
   return 0;
 }
 
