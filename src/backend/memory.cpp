@@ -64,26 +64,21 @@ cudaMemPool_t device_pool() {
 
 void* cuda_alloc(std::size_t bytes) {
   void* p = nullptr;
-  if (!cuda_pool_setting()) {
-    const cudaError_t status = cudaMalloc(&p, bytes);
-    if (status != cudaSuccess)
-      throw_external_error("CUDA", "cudaMalloc", __FILE__, __LINE__,
-                           std::string(cudaGetErrorString(status)) + " (asked for " + std::to_string(bytes) + " bytes)");
-    return p;
-  }
-  const cudaMemPool_t pool = device_pool();
-  cudaError_t status = cudaMallocAsync(&p, bytes, cudaStreamLegacy);
-  if (status == cudaErrorMemoryAllocation) {
+  const bool pooled = cuda_pool_setting();
+  const cudaMemPool_t pool = pooled ? device_pool() : nullptr;  // configured before its first allocation
+  auto request = [&] { return pooled ? cudaMallocAsync(&p, bytes, cudaStreamLegacy) : cudaMalloc(&p, bytes); };
+  cudaError_t status = request();
+  if (pooled && status == cudaErrorMemoryAllocation) {
     // Free pages the pool keeps may be what is missing: once the device has
     // finished with everything freed, they go back to the driver and the
     // request is made again, so what fits is what cudaMalloc would fit.
     (void)cudaGetLastError();
     GS_CUDA_CHECK(cudaDeviceSynchronize());
     GS_CUDA_CHECK(cudaMemPoolTrimTo(pool, 0));
-    status = cudaMallocAsync(&p, bytes, cudaStreamLegacy);
+    status = request();
   }
   if (status != cudaSuccess)
-    throw_external_error("CUDA", "cudaMallocAsync", __FILE__, __LINE__,
+    throw_external_error("CUDA", pooled ? "cudaMallocAsync" : "cudaMalloc", __FILE__, __LINE__,
                          std::string(cudaGetErrorString(status)) + " (asked for " + std::to_string(bytes) + " bytes)");
   return p;
 }
