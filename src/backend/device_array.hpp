@@ -51,6 +51,14 @@ class DeviceArray {
     }
     resize(n);
   }
+  // Frees the storage (no elements, no capacity): for arrays a phase of a
+  // step rewrites whole, so that what another phase holds never stands
+  // beside them at the peak. On a GPU the device's pool keeps the pages for
+  // the next allocation (backend/memory.hpp): no wait for the device.
+  void discard() noexcept {
+    release();
+    size_ = 0;
+  }
   void zero() { if (size_ > 0) backend_zero(backend_, data_, size_ * sizeof(T)); }
 
   std::vector<T> to_host() const {

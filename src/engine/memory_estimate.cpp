@@ -92,39 +92,58 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
     m.surface_row_share = surface_row_share(scene, skin);
     m.history_bytes = pair_entry * entries + sizeof(Index) +
                       2 * 1.25 * m.surface_row_share * (sizeof(ParticleId) + springs) * scene.surface_slots;
-    // At a rebuild, each particle's touching contacts (a partner id and the
-    // springs; at most twelve touch in a close-packed bed) wait in the
-    // staging buffer for the new list (engine/pair_keep.hpp), beside the old
-    // list with each particle's origin row and the kept table's offsets.
+    // Each particle's touching contacts (a partner id and the springs; at
+    // most twelve touch in a close-packed bed), kept at a rebuild for the
+    // new list (engine/pair_keep.hpp).
     kept = (sizeof(ParticleId) + springs) * kEstimatedListEntries;
-    m.rebuild_bytes = sizeof(Index) + sizeof(ListOffset);
   }
-  // Verlet list: offsets, fp32 reference positions, entries; the cell
-  // list's order of the particles (neighbor/verlet_list.hpp, cell_list.hpp).
-  m.list_bytes = sizeof(Index) + sizeof(Vec3f) + sizeof(Index) * entries + sizeof(Index);
+  // The Verlet list between rebuilds: offsets, fp32 reference positions,
+  // entries (neighbor/verlet_list.hpp).
+  const double list_entries = sizeof(Index) * entries;
+  m.list_bytes = sizeof(ListOffset) + sizeof(Vec3f) + list_entries;
   // With meshes, the near lists' offsets (walls/mesh_near.hpp); their
   // entries, 4 bytes per triangle near a particle, are few and left out.
   if (scene.meshes.n_meshes() > 0) m.list_bytes += sizeof(ListOffset);
-  // The staging buffer at its largest: a re-sort's gather of one component
-  // of a field (fp64: engine/particle_mover_history.hpp), a sort's keys and
-  // second buffers (the cell list's while it is built, the id order's at
-  // output: 32-bit keys, 12 bytes per particle, on a GPU where the cells
-  // number at most 2^32: neighbor/cell_list.hpp), or the kept contacts at a
-  // rebuild (engine/step_state.hpp).
   const double r = largest_radius(scene);
   if (r > 0) {
     const CellGrid g = make_cell_grid(scene.domain_min, scene.domain_max, 2 * r, periodic_box(scene));
     m.cells = g.cell_count();
     m.cell_bytes = double(sizeof(Index)) * double(m.cells + 1);  // the cells' offsets
   }
+  // A rebuild's phases against what is held between rebuilds
+  // (engine/neighbour_finder.hpp), each transient freed before the next
+  // phase allocates. The old list's references and, without history, its
+  // entries (and the CPU's reverse entries) are freed first; with history
+  // its entries and springs become the carried table and each particle gets
+  // an origin row. Then the cell order of the particles beside, in the
+  // staging buffer, either a re-sort's gather of one fp64 component of a
+  // field or the sort's keys and second buffers (32-bit keys of the cell
+  // alone, 12 bytes, on a GPU where the cells number at most 2^32:
+  // neighbor/cell_list.hpp; the CPU's 64-bit keys with the ids, 20). With
+  // history the kept contacts and their offsets take the sort's place while
+  // the carried table is still held, and are merged into the new list's
+  // entries and springs, which replace the carried table's, once the cell
+  // list is gone; without history the new list's entries come beside the
+  // cell order.
+  const bool history = fields_kept != 0;
+  const double origin = history ? sizeof(Index) : 0, order = sizeof(Index);
+  auto build_peak = [&](double sort_buffers, double freed_per_entry) {
+    const double freed = sizeof(Vec3f) + (history ? 0 : list_entries) + freed_per_entry * entries;
+    const double sort = -freed + origin + order + std::max(double(sizeof(double)), sort_buffers);
+    if (history) {
+      const double keep = -freed + origin + order + sizeof(ListOffset) + kept;
+      const double merge = -double(sizeof(Vec3f)) + sizeof(ListOffset) + kept;  // the entries (and reverse entries) back
+      return std::max({0.0, sort, keep, merge});
+    }
+    return std::max({0.0, sort, -freed + order + list_entries});
+  };
   const double key = m.cells <= (std::int64_t(1) << 32) ? sizeof(std::uint32_t) : sizeof(std::uint64_t);
-  const double sort = 2 * key + sizeof(Index);
-  m.staging_bytes = std::max({double(sizeof(double)), sort, kept});
-  m.bytes_per_particle =
-      m.field_bytes + m.force_bytes + m.history_bytes + m.list_bytes + m.staging_bytes + m.rebuild_bytes;
-  // The CPU's sort keys hold the ids too (64 bits: neighbor/cell_list.hpp).
-  const double cpu_staging = std::max(2.0 * sizeof(std::uint64_t) + sizeof(Index), kept);
-  m.cpu_extra_bytes = (sizeof(ListOffset) + 6 * real + sizeof(std::uint8_t)) * entries + cpu_staging - m.staging_bytes;
+  m.build_bytes = build_peak(2 * key + sizeof(Index), 0);
+  m.bytes_per_particle = m.field_bytes + m.force_bytes + m.history_bytes + m.list_bytes + m.build_bytes;
+  // The CPU's per entry: a reverse entry (freed at a rebuild), a load and a touching flag.
+  const double cpu_held = sizeof(ListOffset) + 6 * real + sizeof(std::uint8_t);
+  m.cpu_extra_bytes =
+      cpu_held * entries + build_peak(2.0 * sizeof(std::uint64_t) + sizeof(Index), sizeof(ListOffset)) - m.build_bytes;
   const MeshSet& meshes = scene.meshes;
   if (r > 0 && meshes.n_meshes() > 0) {
     const double skin = 2 * r * scene.verlet_skin;
@@ -136,10 +155,10 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
     m.mesh_bytes = bins.bytes() + 48.0 * meshes.n_vertices() + 29.0 * meshes.n_triangles() + 8.0 * meshes.n_edges;
   }
   m.total_bytes = m.bytes_per_particle * double(particle_count(scene)) + m.cell_bytes + m.mesh_bytes;
-  if (fields_kept != 0) {
+  if (history) {
     // The old list's offsets and entries, its pair entries, the origin rows
     // and the kept offsets.
-    const double per_particle = sizeof(ListOffset) + (sizeof(Index) + pair_entry) * entries + m.rebuild_bytes;
+    const double per_particle = sizeof(ListOffset) + (sizeof(Index) + pair_entry) * entries + origin + sizeof(ListOffset);
     const double kept_tables = per_particle * double(particle_count(scene));
     if (kept_tables < double(kKeepDetachedBelow)) m.gpu_kept_bytes = kept_tables;
   }

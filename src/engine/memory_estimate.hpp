@@ -23,15 +23,18 @@ struct MemoryEstimate {
   double force_bytes = 0;         // force and torque, per particle
   double history_bytes = 0;       // contact history: pair entries and surface rows, per particle
   double surface_row_share = 0;   // the share of the particles with a row of surface slots
-  double rebuild_bytes = 0;       // beside the lists at a rebuild: origin rows and kept offsets, per particle
-  double list_bytes = 0;          // Verlet list, the cell list's order and the meshes' near lists, per particle
-  double staging_bytes = 0;       // the staging buffer at its largest (the kept contacts), per particle
-  double cell_bytes = 0;          // cell tables
+  double list_bytes = 0;          // Verlet list (offsets, references, entries) and the meshes' near lists, per particle
+  // What a rebuild of the lists holds at its peak beyond what the run holds
+  // between rebuilds, per particle: the largest of its phases
+  // (engine/neighbour_finder.hpp), with history the kept contacts'.
+  double build_bytes = 0;
+  double cell_bytes = 0;          // the cells' offsets, while a rebuild holds the cell list
   // The CPU's alone, not in bytes_per_particle, per particle: computing each
   // pair once keeps per list entry the partner's reverse entry, a load
   // (force and torque) and a touching flag (engine/force_kernel.hpp,
-  // EntryLoads); and its cell sort's keys hold the ids (64 bits), so its
-  // staging buffer holds 20 bytes where a GPU's may hold less.
+  // EntryLoads), and its cell sort's keys hold the ids (64 bits: 20 bytes of
+  // sort buffers where a GPU's take 12); a rebuild frees the reverse
+  // entries with the old list.
   double cpu_extra_bytes = 0;
   // A GPU's alone, not in total_bytes: where the last build's list and pair
   // tables hold less than kKeepDetachedBelow (engine/pair_history.hpp), a
@@ -46,13 +49,14 @@ struct MemoryEstimate {
 };
 
 // What a run of this scene holds in device memory at its peak, by the layout
-// of ParticleStore, the force arrays, the contact history, the Verlet and
-// cell lists (estimated_list_entries per particle, at most twelve touching), the
-// staging buffer that also holds the sort's buffers and, at a list rebuild,
-// the pair history's kept contacts (engine/pair_keep.hpp), and the meshes
-// with their binning, at the smallest cells a run uses (one largest
-// diameter: the most cells). docs/PERFORMANCE.md ("Bytes per particle")
-// lists the same parts.
+// of ParticleStore, the force arrays, the contact history and the Verlet
+// list (estimated_list_entries per particle, at most twelve touching)
+// between rebuilds, plus the largest phase of a rebuild: the cell list with
+// the sort's buffers (in the staging buffer) or the new list's entries, and
+// with history the pair history's kept contacts (engine/pair_keep.hpp); and
+// the meshes with their binning, at the smallest cells a run uses (one
+// largest diameter: the most cells). docs/PERFORMANCE.md ("Bytes per
+// particle") lists the same parts.
 MemoryEstimate estimate_memory(const SceneSpec& scene);
 
 }  // namespace gs

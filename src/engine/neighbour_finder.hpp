@@ -42,22 +42,35 @@ class NeighbourFinder final : public NeighbourSearch {
 
   void build_cell_list(const ParticleStore& s, const CellGrid& grid) override {
     if (follower_) follower_->list_replacing(s);
-    build_cells<Exec>(cells_, s.position.data(), s.id.data(), s.size(), grid, scratch_);
-    verlet_.valid = false;
+    // The follower has taken the history it keeps per entry: what is left of
+    // the list goes before the sort's buffers come.
+    discard_spent_list(verlet_);
     split_ = {};
+    build_cells<Exec>(cells_, s.position.data(), s.id.data(), s.size(), grid, scratch_);
   }
   const DeviceArray<Index>& cell_order() const override { return cells_.sorted; }
   bool uses_verlet_list() const override { return Exec::verlet_list; }
+  // A build holds at once only what one of its phases needs, each transient
+  // freed before the next phase allocates: the sort's buffers (in the
+  // staging buffer) before the follower's kept contacts and the new list, the
+  // cell list before the follower's new tables, the kept contacts before the
+  // reference positions. So between builds a run holds neither the cell
+  // list nor a staging buffer (docs/PERFORMANCE.md, "A build's transients
+  // one after another").
   void build(const ParticleStore& s, const CellGrid& grid, double skin) override {
     build_cell_list(s, grid);
     if constexpr (Exec::verlet_list) {
+      scratch_.discard();
       if (follower_) follower_->list_building(s);
       build_verlet_list<Exec>(verlet_, cells_, s.position.data(), s.radius.data(), s.id.data(), s.n_owned, s.size(),
                               skin);
+      cells_.discard();
       split_by_ghosts(s);
       built_at_ = s.revision;
       ++builds_;
       if (follower_) follower_->list_built(s);
+      scratch_.discard();
+      set_list_references<Exec>(verlet_, s.position.data());
     }
   }
   void follow(ListFollower* f) { follower_ = f; }

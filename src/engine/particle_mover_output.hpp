@@ -39,9 +39,10 @@ void rows_to_host(std::vector<U>& out, Index n, std::size_t width, HostPins& pin
   } else {
     // Chunks of 8 to 64 MiB: few enough that the launches and waits are
     // negligible, small enough that the bounce buffer stays small; within
-    // that, as large as the staging array already is (it keeps its storage,
-    // sized by the run's sorts, kept contacts or re-sorts), so that output
-    // adds no device memory where the run has 8 MiB of staging or more.
+    // that, as large as the staging array already is (a build frees it,
+    // engine/neighbour_finder.hpp; what the exchange or the last output grew
+    // it to stays), so that output adds no device memory where the run has
+    // 8 MiB of staging or more.
     constexpr std::size_t kLeastChunkBytes = std::size_t(8) << 20, kMostChunkBytes = std::size_t(64) << 20;
     const std::size_t chunk_most = std::clamp(staging.bytes(), kLeastChunkBytes, kMostChunkBytes);
     const std::size_t row_bytes = width * sizeof(U);

@@ -44,6 +44,9 @@ struct StepState {
   // must be done with it (on the stream) before it returns; one exception,
   // within a build of the neighbour lists, the pair history's kept contacts
   // from the cell list's build to the Verlet list's (engine/pair_keep.hpp).
+  // A build of the lists frees it twice (after the sort, after the kept
+  // contacts: engine/neighbour_finder.hpp), so that it stands beside neither
+  // the new list nor its references.
   DeviceArray<unsigned char> staging;
 };
 

@@ -24,6 +24,11 @@ struct CellList {
   DeviceArray<Index> cell_begin;  // per cell + 1: offsets in `sorted`
 
   std::size_t bytes() const { return sorted.bytes() + cell_begin.bytes(); }
+  // Frees both arrays (the next build sizes them again); the grid stays.
+  void discard() noexcept {
+    sorted.discard();
+    cell_begin.discard();
+  }
 };
 
 // The pairs a radix sort orders: keys carrying indices, each with a second

@@ -313,15 +313,17 @@ struct OffsetsWrapped {
 };
 
 // Builds the list of the n_owned first particles against all n_total of the
-// cell list `cells` (owned and ghosts). Exec::fill_verlet_list finds the
-// neighbours, in the backend's memory.
+// cell list `cells` (owned and ghosts): Exec::fill_verlet_list finds the
+// neighbours, in the backend's memory; then, where each pair is computed once
+// (Exec::pairs_once), the reverse entries. The cell list is not read after
+// this; the reference positions follow in set_list_references, which a
+// build calls last (so they are not held beside the cells or a follower's
+// tables at the build's peak: engine/neighbour_finder.hpp).
 template <class Exec>
 void build_verlet_list(VerletList& v, const CellList& cells, const Vec3d* position, const float* radius,
                        const ParticleId* id, Index n_owned, Index n_total, double skin) {
   Exec::fill_verlet_list(v, CellCandidates{cells.grid, cells.sorted.data(), cells.cell_begin.data()},
                          WithinSkin{position, radius, skin, cells.grid.box}, id, n_owned);
-  v.reference.resize(std::size_t(n_owned));
-  Exec::parallel_for(n_owned, RoundReference{position, v.reference.data()});
   if constexpr (Exec::pairs_once) {
     v.reverse.resize_discarding(v.list.size());
     Exec::parallel_for(n_owned, ReverseEntryKernel{v.begin.data(), v.list.data(), id, n_owned, v.reverse.data()});
@@ -331,6 +333,24 @@ void build_verlet_list(VerletList& v, const CellList& cells, const Vec3d* positi
   v.n_owned = n_owned;
   v.n_total = n_total;
   v.valid = true;
+}
+
+// The positions the list's staleness is measured from (RoundReference).
+template <class Exec>
+void set_list_references(VerletList& v, const Vec3d* position) {
+  v.reference.resize_discarding(std::size_t(v.n_owned));
+  Exec::parallel_for(v.n_owned, RoundReference{position, v.reference.data()});
+}
+
+// What a list leaves behind once it no longer describes the store: its
+// entries, reverse entries and references, rewritten whole by the next
+// build, are freed (its offsets are kept: the next build's count pass
+// writes them in place).
+inline void discard_spent_list(VerletList& v) {
+  v.valid = false;
+  v.list.discard();
+  v.reverse.discard();
+  v.reference.discard();
 }
 
 }  // namespace gs

@@ -59,6 +59,7 @@ void build(BuiltList& b, const Cloud& c, Index n_owned, double skin, double box)
   const CellGrid grid = make_cell_grid({0, 0, 0}, {box, box, box}, 2 * kLarge + skin);
   build_cells<CpuExec>(b.cells, b.position.data(), b.id.data(), n, grid, b.scratch);
   build_verlet_list<CpuExec>(b.list, b.cells, b.position.data(), b.radius.data(), b.id.data(), n_owned, n, skin);
+  set_list_references<CpuExec>(b.list, b.position.data());
 }
 
 TEST(VerletList, HoldsExactlyThePairsWithinTheSkinInIdOrder) {

@@ -51,6 +51,7 @@ struct FarFromOrigin {
     const CellGrid grid = make_cell_grid({99.99, 100.49, 100.49}, {100.02, 100.51, 100.51}, 2 * kRadius + kSkin);
     build_cells<CpuExec>(cells, position.data(), id.data(), 2, grid, scratch);
     build_verlet_list<CpuExec>(list, cells, position.data(), radius.data(), id.data(), 2, 2, kSkin);
+    set_list_references<CpuExec>(list, position.data());
   }
   // Whether the list is stale with the first sphere moved by dx along x.
   bool stale_after(double dx) {
@@ -98,6 +99,7 @@ TEST(VerletReference, NearTheOriginTheTestIsHalfTheSkin) {
   const CellGrid grid = make_cell_grid({-0.01, -0.01, -0.01}, {0.01, 0.01, 0.01}, 2 * kRadius + kSkin);
   build_cells<CpuExec>(cells, position.data(), id.data(), 2, grid, scratch);
   build_verlet_list<CpuExec>(list, cells, position.data(), radius.data(), id.data(), 2, 2, kSkin);
+  set_list_references<CpuExec>(list, position.data());
   for (const double fraction : {0.49, 0.51}) {
     std::vector<Vec3d> moved = start;
     moved[0].z -= fraction * kSkin;
