@@ -1,15 +1,19 @@
 #pragma once
 // The owned particles' store indices in ascending id order, for the kernels
 // that put fields in id order (snapshots, checkpoints, the particles on
-// walls). On a GPU a radix sort of (id, index) pairs on the device, its keys
-// and second buffers in the step's staging buffer as the cell list's sort
-// has them (so no more than the cell list's build needs); on the CPU the
-// host's linear-time order (core/id_order.hpp). Ids are unique, so both give
-// the one order.
+// walls). Ids are unique: where the owned ids span exactly as many values as
+// there are particles (one rank's run without removals), particle k's place
+// is its id less the smallest, a scatter that needs nothing beside the order.
+// Elsewhere, on a GPU a radix sort of (id, index) pairs on the device, its
+// keys and second buffers in the step's staging buffer as the cell list's
+// sort has them (12 bytes per particle there, which a build frees again);
+// on the CPU the host's linear-time order (core/id_order.hpp). Both give the
+// one order.
 #include <vector>
 
 #include "backend/device_array.hpp"
 #include "core/id_order.hpp"
+#include "core/id_range.hpp"
 #include "neighbor/cell_list.hpp"
 
 namespace gs {
@@ -25,10 +29,23 @@ struct IdKeys {
   }
 };
 
+// order[id[k] - lowest] = k.
+struct PlaceById {
+  const ParticleId* id;
+  ParticleId lowest;
+  Index* order;
+  GS_HD void operator()(Index k) const { order[id[k] - lowest] = k; }
+};
+
 template <class Exec>
 void owned_id_order(const ParticleId* id, Index n, DeviceArray<Index>& order, DeviceArray<unsigned char>& scratch) {
   order.resize_discarding(std::size_t(n));
   if (n == 0) return;
+  const IdRange r = Exec::id_range(id, n, scratch);
+  if (std::uint64_t(r.highest) - std::uint64_t(r.lowest) + 1 == std::uint64_t(n)) {
+    Exec::parallel_for(n, PlaceById{id, r.lowest, order.data()});
+    return;
+  }
   if constexpr (Exec::backend == Backend::cpu) {
     const std::vector<std::size_t> o = id_order(std::vector<ParticleId>(id, id + n));
     Index* to = order.data();

@@ -1,5 +1,6 @@
 #pragma once
 // CPU execution policy: OpenMP over particles, an O(N) radix sort for keys.
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
@@ -8,6 +9,7 @@
 #include "backend/backend.hpp"
 #include "backend/device_array.hpp"
 #include "core/history_layout.hpp"
+#include "core/id_range.hpp"
 #include "neighbor/cell_list.hpp"
 #include "neighbor/verlet_list.hpp"
 
@@ -53,6 +55,17 @@ struct CpuExec {
   template <class F>
   static void parallel_for_lanes(Index n, int /*setting*/, const F& f) {
     parallel_for(n, f);
+  }
+
+  // The smallest and the largest of id[0, n), n > 0 (every host thread).
+  static IdRange id_range(const ParticleId* id, Index n, DeviceArray<unsigned char>& /*scratch*/) {
+    ParticleId lowest = id[0], highest = id[0];
+#pragma omp parallel for reduction(min : lowest) reduction(max : highest) if (n >= kSerialBelow)
+    for (Index k = 0; k < n; ++k) {
+      lowest = std::min(lowest, id[k]);
+      highest = std::max(highest, id[k]);
+    }
+    return {lowest, highest};
   }
 
   // How many of flags[0, n) are not zero (every host thread).

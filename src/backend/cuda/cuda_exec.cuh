@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include <cub/device/device_radix_sort.cuh>
+#include <cub/device/device_reduce.cuh>
 #include <cub/device/device_scan.cuh>
 #include <cub/device/device_select.cuh>
 #include <thrust/iterator/counting_iterator.h>
@@ -14,6 +15,7 @@
 #include "backend/cuda/lane_group.cuh"
 #include "backend/device_array.hpp"
 #include "core/history_layout.hpp"
+#include "core/id_range.hpp"
 #include "neighbor/cell_list.hpp"
 #include "neighbor/verlet_list.hpp"
 
@@ -128,6 +130,22 @@ struct CudaExec {
     GS_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(storage, bytes, keys, values, p.n, 0, p.key_bits));
     p.keys = keys.Current();
     p.values = values.Current();
+  }
+
+  // The smallest and the largest of id[0, n), n > 0: CUB's reductions, their
+  // storage in `scratch`, the two read back.
+  static IdRange id_range(const ParticleId* id, Index n, DeviceArray<unsigned char>& scratch) {
+    std::size_t min_bytes = 0, max_bytes = 0;
+    GS_CUDA_CHECK(cub::DeviceReduce::Min(nullptr, min_bytes, id, static_cast<ParticleId*>(nullptr), n));
+    GS_CUDA_CHECK(cub::DeviceReduce::Max(nullptr, max_bytes, id, static_cast<ParticleId*>(nullptr), n));
+    constexpr std::size_t kResultBytes = 256;  // the two results first, CUB's storage aligned after them
+    scratch.resize_discarding(kResultBytes + std::max(min_bytes, max_bytes));
+    ParticleId* result = reinterpret_cast<ParticleId*>(scratch.data());
+    GS_CUDA_CHECK(cub::DeviceReduce::Min(scratch.data() + kResultBytes, min_bytes, id, result, n));
+    GS_CUDA_CHECK(cub::DeviceReduce::Max(scratch.data() + kResultBytes, max_bytes, id, result + 1, n));
+    ParticleId read[2] = {0, 0};
+    GS_CUDA_CHECK(cudaMemcpy(read, result, sizeof read, cudaMemcpyDeviceToHost));
+    return {read[0], read[1]};
   }
 
   // Writes the indices i in [0, n) with pred(i), ascending, to out; returns
