@@ -9,7 +9,8 @@
 namespace gs {
 
 // An array in a backend's memory. Owns its storage; moves, never copies.
-// Capacity only grows, so buffers reused every step are allocated once.
+// Capacity only grows (until discard()), so buffers reused every step are
+// allocated once.
 template <class T>
 class DeviceArray {
  public:
