@@ -156,9 +156,10 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   }
   m.total_bytes = m.bytes_per_particle * double(particle_count(scene)) + m.cell_bytes + m.mesh_bytes;
   if (history) {
-    // The old list's offsets and entries, its pair entries, the origin rows
-    // and the kept offsets.
-    const double per_particle = sizeof(ListOffset) + (sizeof(Index) + pair_entry) * entries + origin + sizeof(ListOffset);
+    // The old list's offsets and pair entries (its partner ids are freed:
+    // engine/pair_history.hpp, drop_detached), the origin rows and the kept
+    // offsets.
+    const double per_particle = sizeof(ListOffset) + pair_entry * entries + origin + sizeof(ListOffset);
     const double kept_tables = per_particle * double(particle_count(scene));
     if (kept_tables < double(kKeepDetachedBelow)) m.gpu_kept_bytes = kept_tables;
   }

@@ -146,7 +146,7 @@ class NeighbourFinder final : public NeighbourSearch {
   void split_by_ghosts(const ParticleStore& s) {
     split_ = {};
     if (s.size() == s.n_owned) {
-      split_order_ = DeviceArray<Index>(Exec::backend);
+      split_order_.discard();
       return;
     }
     split_order_.resize_discarding(std::size_t(s.n_owned));

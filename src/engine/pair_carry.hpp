@@ -172,7 +172,7 @@ void PairCarry<Exec, Real>::list_built(const ParticleStore& s) {
   Exec::parallel_for_lanes(v.n_owned, kRowLanes,
                            MergeKept<Real>{v.begin.data(), v.list.data(), s.id.data(), h.kept_begin.data(), kept_partner,
                                            kept_fields(base), h.current.touching.data(), field_arrays(h.current)});
-  if (free_detached_) h.kept_begin = DeviceArray<ListOffset>(Exec::backend);
+  if (free_detached_) h.kept_begin.discard();
   h.attached = true;
 }
 

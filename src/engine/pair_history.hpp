@@ -145,14 +145,17 @@ struct PairHistory {
   }
   // The detached tables emptied once their contacts are kept: freed, or
   // with their storage kept for the next detach to swap into the new list's
-  // place (kKeepDetachedBelow).
+  // place (kKeepDetachedBelow). The partner ids are freed either way: what a
+  // detach swaps into the list's entries is freed with the spent list
+  // (discard_spent_list, neighbor/verlet_list.hpp) before the new one is
+  // counted.
   void drop_detached(bool free_storage) {
     auto drop = [free_storage](auto& a) {
-      if (free_storage) a = std::decay_t<decltype(a)>(a.backend());
+      if (free_storage) a.discard();
       else a.resize(0);
     };
     drop(carried_begin);
-    drop(carried_partner);
+    carried_partner.discard();
     drop(origin);
     drop(pending_partner);
     drop(carried.touching);

@@ -186,7 +186,7 @@ void assign_surface_rows(ContactHistory<Real>& h, ContactHistory<Real>& spare, u
   h.capacity = capacity;
   h.strides = fresh;
   if (Exec::backend == Backend::cpu || spare_bytes >= kKeepDetachedBelow)
-    for_each_surface_array(spare, kept, [](auto& b, auto empty) { b = DeviceArray<decltype(empty)>(Exec::backend); });
+    for_each_surface_array(spare, kept, [](auto& b, auto) { b.discard(); });
 }
 
 }  // namespace gs

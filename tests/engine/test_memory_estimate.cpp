@@ -70,8 +70,9 @@ TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   EXPECT_EQ(m.bytes_per_particle, 90 + 24 + 160 + 64 + 192);
   EXPECT_EQ(m.cpu_extra_bytes, 12 * kCpuPairEntry - 8);
   // A small scene's GPU run keeps the last build's tables: offsets 4, 12
-  // entries of an index and a pair entry (4 + 13), origin and kept offsets 8.
-  EXPECT_EQ(m.gpu_kept_bytes, double(particle_count(lattice_scene(2, kFriction))) * (4 + 12 * 17 + 8));
+  // pair entries (13; not their partner ids, which the next build frees
+  // with the spent list), origin and kept offsets 8.
+  EXPECT_EQ(m.gpu_kept_bytes, double(particle_count(lattice_scene(2, kFriction))) * (4 + 12 * 13 + 8));
   const MemoryEstimate none = estimate_memory(lattice_scene(2, 0));
   EXPECT_EQ(none.history_bytes, 0);
   EXPECT_EQ(none.force_bytes, 12);  // no torque without friction
