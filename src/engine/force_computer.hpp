@@ -30,7 +30,6 @@ class ForceComputer final : public ForceComputation {
                 const NeighbourFinder<Exec>& neighbours)
       : pairs_(Exec::backend), walls_(Exec::backend), wall_screens_(Exec::backend), meshes_(Exec::backend),
         st_(state), neighbours_(neighbours) {
-    spare_rows_.place_on(Exec::backend);
     if (state.kept != kKept || state.torque != kTorque)
       throw std::logic_error("the step state does not keep what the force computation writes");
     n_materials_ = int(materials.size());
@@ -72,7 +71,7 @@ class ForceComputer final : public ForceComputation {
       need.n_walls = n_walls_;
       need.near = near_view();
       need.skin = skin;
-      assign_surface_rows<Exec>(st_.history, spare_rows_, kKept, s.n_owned, need, st_.staging, row_scan_);
+      assign_surface_rows<Exec>(st_.history, kKept, s.n_owned, need, st_.staging, row_scan_);
     }
   }
 
@@ -267,9 +266,7 @@ class ForceComputer final : public ForceComputation {
   DeviceArray<ListOffset> near_begin_{Exec::backend};
   DeviceArray<std::int32_t> near_triangles_{Exec::backend};
   std::uint64_t near_built_at_ = ~std::uint64_t(0);  // the store's revision then
-  // The surface table's other half at each build (engine/surface_rows.hpp),
-  // and its scan's scratch.
-  ContactHistory<Real> spare_rows_;
+  // The scan's scratch of the surface rows' build (engine/surface_rows.hpp).
   DeviceArray<unsigned char> row_scan_{Exec::backend};
   StepState<Real>& st_;
   const NeighbourFinder<Exec>& neighbours_;

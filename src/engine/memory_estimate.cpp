@@ -77,21 +77,25 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   double pair_entry = 0;  // a list entry's touching flag and springs
   if (fields_kept != 0) {
     double springs = 0;  // one contact's history fields
+    double largest = sizeof(ParticleId);  // the largest array of a surface table
     const bool wide = real == 8;
-#define GS_ADD_FIELD(name, value, bit) \
-  if (fields_kept & (bit)) springs += wide ? sizeof(value<double>) : sizeof(value<float>);
+#define GS_ADD_FIELD(name, value, bit)                                                  \
+  if (fields_kept & (bit)) {                                                           \
+    springs += wide ? sizeof(value<double>) : sizeof(value<float>);                    \
+    largest = std::max(largest, double(wide ? sizeof(value<double>) : sizeof(value<float>))); \
+  }
     GS_HISTORY_FIELDS(GS_ADD_FIELD)
 #undef GS_ADD_FIELD
     // A touching flag and the springs per list entry (engine/pair_history.hpp);
     // a row's index per particle, and for the share of them near a wall or
     // mesh a row of surface slots of a partner id and the springs, with room
-    // for a quarter more, twice: the table and its other half at a build
+    // for a quarter more, and at a build the new copy of one of its arrays
     // (engine/surface_rows.hpp).
     pair_entry = sizeof(std::uint8_t) + springs;
     const double r = largest_radius(scene), skin = 2 * r * scene.verlet_skin;
     m.surface_row_share = surface_row_share(scene, skin);
     m.history_bytes = pair_entry * entries + sizeof(Index) +
-                      2 * 1.25 * m.surface_row_share * (sizeof(ParticleId) + springs) * scene.surface_slots;
+                      1.25 * m.surface_row_share * (sizeof(ParticleId) + springs + largest) * scene.surface_slots;
     // Each particle's touching contacts (a partner id and the springs; at
     // most twelve touch in a close-packed bed), kept at a rebuild for the
     // new list (engine/pair_keep.hpp).
@@ -155,14 +159,6 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
     m.mesh_bytes = bins.bytes() + 48.0 * meshes.n_vertices() + 29.0 * meshes.n_triangles() + 8.0 * meshes.n_edges;
   }
   m.total_bytes = m.bytes_per_particle * double(particle_count(scene)) + m.cell_bytes + m.mesh_bytes;
-  if (history) {
-    // The old list's offsets and pair entries (its partner ids are freed:
-    // engine/pair_history.hpp, drop_detached), the origin rows and the kept
-    // offsets.
-    const double per_particle = sizeof(ListOffset) + pair_entry * entries + origin + sizeof(ListOffset);
-    const double kept_tables = per_particle * double(particle_count(scene));
-    if (kept_tables < double(kKeepDetachedBelow)) m.gpu_kept_bytes = kept_tables;
-  }
   return m;
 }
 

@@ -36,11 +36,6 @@ struct MemoryEstimate {
   // sort buffers where a GPU's take 12); a rebuild frees the reverse
   // entries with the old list.
   double cpu_extra_bytes = 0;
-  // A GPU's alone, not in total_bytes: where the last build's list and pair
-  // tables hold less than kKeepDetachedBelow (engine/pair_history.hpp), a
-  // GPU keeps them for the next build instead of freeing them; their bytes
-  // for the whole run, else 0.
-  double gpu_kept_bytes = 0;
   long long cells = 0;
   double mesh_bytes = 0;          // mesh arrays and their binning (a bound, walls/mesh.hpp)
   double mesh_cells = 0;          // cells of the meshes' grids

@@ -98,12 +98,6 @@ class PairCarry final : public StoreObserver, public ListFollower {
 #undef GS_POINT_AT_FIELD
     return a;
   }
-  // Whether this build frees the detached tables (set by list_building):
-  // always on the CPU, and on a GPU where they hold kKeepDetachedBelow
-  // bytes or more (engine/pair_history.hpp). Below that a GPU keeps them,
-  // emptied, and the next detach swaps them into the new list's place.
-  bool free_detached_ = true;
-
   StepState<Real>& st_;
   NeighbourFinder<Exec>& finder_;
   KeptLayout kept_;  // the kept table in the staging buffer, from list_building to list_built
@@ -155,8 +149,7 @@ void PairCarry<Exec, Real>::list_building(const ParticleStore& s) {
   Exec::parallel_for_lanes(n, kRowLanes,
                            KeepContacts<Real>{contacts, h.kept_begin.data(), kept_partner, kept_fields(base),
                                               field_arrays(h.carried), field_arrays(h.pending)});
-  free_detached_ = Exec::backend == Backend::cpu || h.detached_bytes() >= kKeepDetachedBelow;
-  h.drop_detached(free_detached_);
+  h.drop_detached();
 }
 
 // The new list's entries take their springs from the kept table.
@@ -172,7 +165,7 @@ void PairCarry<Exec, Real>::list_built(const ParticleStore& s) {
   Exec::parallel_for_lanes(v.n_owned, kRowLanes,
                            MergeKept<Real>{v.begin.data(), v.list.data(), s.id.data(), h.kept_begin.data(), kept_partner,
                                            kept_fields(base), h.current.touching.data(), field_arrays(h.current)});
-  if (free_detached_) h.kept_begin.discard();
+  h.kept_begin.discard();
   h.attached = true;
 }
 

@@ -42,14 +42,6 @@
 
 namespace gs {
 
-// Detached tables that hold fewer bytes than this are kept on a GPU from one
-// build to the next, emptied, instead of freed (engine/pair_carry.hpp): six
-// frees and allocations a build of mixer case a, which builds every dozen
-// steps, each a host call (and, with GRAINSTORM_CUDA_POOL=0, each free a wait
-// for the device: backend/memory.hpp). Larger ones are freed before the new
-// list is allocated, so that the two are never held at once.
-constexpr std::size_t kKeepDetachedBelow = std::size_t(64) << 20;
-
 // origin values: a carried row, kPendingBase + a pending row, or none.
 constexpr Index kNoOrigin = -1;
 constexpr Index kPendingBase = Index(1) << 30;
@@ -138,31 +130,20 @@ struct PairHistory {
   // contacts lie in the staging buffer: engine/pair_keep.hpp).
   DeviceArray<ListOffset> kept_begin;
 
-  // The detached tables' storage, and kept_begin's.
-  std::size_t detached_bytes() const {
-    return carried_begin.bytes() + carried_partner.bytes() + carried.bytes() + origin.bytes() +
-           pending_partner.bytes() + pending.bytes() + kept_begin.bytes();
-  }
-  // The detached tables emptied once their contacts are kept: freed, or
-  // with their storage kept for the next detach to swap into the new list's
-  // place (kKeepDetachedBelow). The partner ids are freed either way: what a
-  // detach swaps into the list's entries is freed with the spent list
-  // (discard_spent_list, neighbor/verlet_list.hpp) before the new one is
-  // counted.
-  void drop_detached(bool free_storage) {
-    auto drop = [free_storage](auto& a) {
-      if (free_storage) a.discard();
-      else a.resize(0);
-    };
-    drop(carried_begin);
+  // The detached tables freed once their contacts are kept, before the new
+  // list is allocated, so that the two are never held at once. (On a GPU a
+  // free returns the memory to the device's pool, backend/memory.hpp, which
+  // serves the next build's allocations from it without a wait.)
+  void drop_detached() {
+    carried_begin.discard();
     carried_partner.discard();
-    drop(origin);
-    drop(pending_partner);
-    drop(carried.touching);
-    drop(pending.touching);
+    origin.discard();
+    pending_partner.discard();
+    carried.touching.discard();
+    pending.touching.discard();
     for_each_history_field(carried, pending, [&](const char*, unsigned, auto& a, auto& b) {
-      drop(a);
-      drop(b);
+      a.discard();
+      b.discard();
     });
     pending_rows = 0;
   }

@@ -115,20 +115,12 @@ struct RelayoutRow {
 };
 
 // f(a, empty) for the table's partner ids and each history field the run
-// keeps (`kept`) of h, with the value of a free slot; f(a, b, empty) for
-// those of h and g side by side.
+// keeps (`kept`) of h, with the value of a free slot.
 template <class Real, class F>
 void for_each_surface_array(ContactHistory<Real>& h, unsigned kept, F&& f) {
   f(h.partner, kNoPartner);
   for_each_history_field(h, [&](const char*, unsigned bit, auto& a) {
     if (kept & bit) f(a, typename std::decay_t<decltype(a)>::value_type{});
-  });
-}
-template <class Real, class F>
-void for_each_surface_array(ContactHistory<Real>& h, ContactHistory<Real>& g, unsigned kept, F&& f) {
-  f(h.partner, g.partner, kNoPartner);
-  for_each_history_field(h, g, [&](const char*, unsigned bit, auto& a, auto& b) {
-    if (kept & bit) f(a, b, typename std::decay_t<decltype(a)>::value_type{});
   });
 }
 
@@ -149,15 +141,12 @@ void grow_surface_table(ContactHistory<Real>& h, unsigned kept, std::size_t capa
 }
 
 // Gives rows to the owned particles [0, n) that need them (`need`, whose
-// table and `begin` this sets), in their order, moving their slots into the
-// table of `spare`, which then takes h's place. `offsets`: scratch for n + 1
-// offsets; `scan_scratch`: the scan's. The spare table is kept for the next
-// build on a GPU where it is small (below kKeepDetachedBelow bytes, as the
-// pair history's detached tables: no allocation in a small scene's build),
-// else freed.
+// table and `begin` this sets), in their order, moving their slots into a
+// new table one array at a time, each old array freed once it has moved.
+// `offsets`: scratch for n + 1 offsets; `scan_scratch`: the scan's.
 template <class Exec, class Real>
-void assign_surface_rows(ContactHistory<Real>& h, ContactHistory<Real>& spare, unsigned kept, Index n,
-                         SurfaceNeed need, DeviceArray<unsigned char>& offsets,
+void assign_surface_rows(ContactHistory<Real>& h, unsigned kept, Index n, SurfaceNeed need,
+                         DeviceArray<unsigned char>& offsets,
                          DeviceArray<unsigned char>& scan_scratch) {
   offsets.resize_discarding((std::size_t(n) + 1) * sizeof(ListOffset));
   ListOffset* begin = reinterpret_cast<ListOffset*>(offsets.data());
@@ -172,21 +161,17 @@ void assign_surface_rows(ContactHistory<Real>& h, ContactHistory<Real>& spare, u
   const std::size_t capacity = surface_capacity(std::size_t(rows));
   const HistoryStrides fresh = HistoryStrides::of(Exec::history_order, h.slots, capacity);
   const HistoryStrides old = h.strides;
-  std::size_t spare_bytes = 0;
-  for_each_surface_array(h, spare, kept, [&](auto& a, auto& to, auto empty) {
+  for_each_surface_array(h, kept, [&](auto& a, auto empty) {
     using T = decltype(empty);
-    to.resize_discarding(std::size_t(h.slots) * capacity);
+    DeviceArray<T> to(Exec::backend, std::size_t(h.slots) * capacity);
     if (n > 0)
       Exec::parallel_for(n, MoveSurfaceRow<T>{h.row.data(), begin, a.data(), old, to.data(), fresh, h.slots, empty});
-    a.swap(to);
-    spare_bytes += to.bytes();
+    a = std::move(to);
   });
   if (n > 0) Exec::parallel_for(n, SetSurfaceRow{h.row.data(), begin});
   h.rows = rows;
   h.capacity = capacity;
   h.strides = fresh;
-  if (Exec::backend == Backend::cpu || spare_bytes >= kKeepDetachedBelow)
-    for_each_surface_array(spare, kept, [](auto& b, auto) { b.discard(); });
 }
 
 }  // namespace gs
