@@ -194,7 +194,6 @@ void DomainExchange::refresh_ghosts(ParticleStore& s, ParticleMovement& k) {
     at += ghost_count_[p];
   }
   unpack(k, s, arrived, true);
-  router_->keep_reference(s);
   plan_revision_ = s.revision;
   plan_valid_ = true;
   ++split_.rebuilds;

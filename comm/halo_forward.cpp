@@ -31,7 +31,7 @@ bool DomainExchange::halo_stale(const ParticleStore& s, ParticleMovement& k, boo
   last_lap_ = std::chrono::steady_clock::now();
   // Without a skin every step rebuilds, on every rank alike: no vote needed.
   if (!(skin_ > 0)) return true;
-  const bool mine = due || !plan_valid_ || s.revision != plan_revision_ || router(s, peers_).moved_beyond(s, 0.5 * skin_);
+  const bool mine = due || !plan_valid_ || s.revision != plan_revision_;
   const bool any = transport_.min(mine ? 0 : 1) == 0;
   lap(k, &ExchangeSplit::route);
   return any;

@@ -1,8 +1,9 @@
 #pragma once
 // Integration over an execution policy and force precision: the half kicks
-// read the last forces (and torques, where an effect makes them). On one
-// rank the kick-drift also checks the Verlet list (ListWatch, fused into the
-// same pass over the particles: no kernel of its own).
+// read the last forces (and torques, where an effect makes them). The
+// kick-drift also checks the Verlet list (ListWatch, fused into the same
+// pass over the particles: no kernel of its own), for the list and, with
+// ranks, the halo.
 #include "engine/integration.hpp"
 #include "engine/neighbour_finder.hpp"
 #include "engine/step_state.hpp"

@@ -2,6 +2,7 @@
 // NeighbourSearch over an execution policy: the cell list, and the Verlet
 // list where the policy keeps one (Exec::verlet_list: both backends), with
 // the verdicts of the watched kick-drifts on its staleness.
+#include <algorithm>
 #include <cstdint>
 #include <stdexcept>
 #include <utility>
@@ -78,11 +79,14 @@ class NeighbourFinder final : public NeighbourSearch {
   // detaches: engine/pair_carry.hpp).
   VerletList& verlet() { return verlet_; }
   const VerletList& verlet() const { return verlet_; }
-  void watch_moves(bool on) override { watching_ = on; }
+  void watch_moves(double skin) override {
+    watching_ = true;
+    watch_skin_ = skin;
+  }
   bool stale(const ParticleStore& s) override {
     if (!list_valid(s)) return true;
     if (!watching_) return false;
-    if (!(verlet_.skin > 0)) return true;  // no skin: any move may bring a new contact
+    if (!(watched_skin() > 0)) return true;  // no skin: any move may bring a new contact
     // The last step's verdict: the kick-drift of a step's kernels ago.
     const Watched& before = watched_[slot(latest_ - 1)];
     if (latest_ > 0 && before.step == latest_ - 1) {
@@ -101,10 +105,13 @@ class NeighbourFinder final : public NeighbourSearch {
   // The check the kick-drift of `step` makes (inactive where moves are not
   // watched), its verdict's slot armed; watch_queued once it is launched.
   ListWatch watch(const ParticleStore& s, long long step) {
-    if (!watching_ || !(verlet_.skin > 0)) return {};
+    const double skin = watched_skin();
+    if (!watching_ || !(skin > 0)) return {};
     const bool with_list = list_valid(s);
     watched_[slot(step)] = {step, builds_, with_list};
-    return {with_list ? verlet_.reference.data() : nullptr, verlet_.box, 0.5 * verlet_.skin,
+    // The margin covers a step's change of a move, whatever skin is watched:
+    // the list's share of it.
+    return {with_list ? verlet_.reference.data() : nullptr, verlet_.box, 0.5 * skin,
             kListMarginOfSkin * verlet_.skin, verdicts_.arm(slot(step))};
   }
   void watch_queued(long long step) {
@@ -177,12 +184,14 @@ class NeighbourFinder final : public NeighbourSearch {
     bool with_list = false;
   };
   static int slot(long long step) { return int(step & 1); }
+  double watched_skin() const { return std::min(verlet_.skin, watch_skin_); }
   // The verdict of `step`, for which the list was kept on the verdict of the
   // step before: the list must have covered it (the lag's guard).
   void note_outrun(long long step, const ListVerdict& v) {
     if (v.stale_now != 0 && outrun_.code == kFaultNone) outrun_ = Fault{kFaultListOutrun, v.stale_now_particle, step};
   }
   bool watching_ = false;
+  double watch_skin_ = 0;  // watch_moves's
   HostFlags<ListVerdict> verdicts_;
   Watched watched_[HostFlagRing::kSlots];
   long long latest_ = -1;  // the step of the last watched kick-drift

@@ -33,12 +33,12 @@ class NeighbourSearch {
   // What the force computation needs to find contacts: the cell list, and
   // with a Verlet list the list too, of particles within r_i + r_j + skin.
   virtual void build(const ParticleStore& s, const CellGrid& grid, double skin) = 0;
-  // On one rank: the kick-drift measures the moves against the Verlet list
-  // (engine/integrator.hpp) and stale() reads its verdict. Ranks leave it
-  // off: the halo's vote has then already rebuilt the halo, and so changed
-  // the store, when a particle moved half of its skin, which is never wider
-  // than the list's.
-  virtual void watch_moves(bool on) = 0;
+  // The kick-drift measures the moves against the Verlet list
+  // (engine/integrator.hpp) and stale() reads its verdict, held to half of
+  // `skin` where that is narrower than the list's: with ranks the halo's
+  // skin, which the coarse cells may cut (RankExchange::set_skin), so that
+  // the verdict is also the halo's (RankExchange::halo_stale).
+  virtual void watch_moves(double skin) = 0;
   // Whether build() must run before this step's force computation, called
   // after this step's kick-drift: always without a Verlet list; with one,
   // when the store has changed since the build (ParticleStore::revision)

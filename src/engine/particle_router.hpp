@@ -31,12 +31,6 @@ class ParticleRouter {
   // Tags each owned particle with the peer slots whose region is within box
   // distance `halo` of it (Decomposition::ranks_near).
   virtual void tag_ghosts(const ParticleStore& s, double halo) = 0;
-  // Remembers the owned particles' positions (at a rebuild of the halo).
-  virtual void keep_reference(const ParticleStore& s) = 0;
-  // Whether some owned particle lies farther than `limit` from its remembered
-  // position (its nearest image across the map's periodic faces), or the
-  // owned particles are not those remembered.
-  virtual bool moved_beyond(const ParticleStore& s, double limit) = 0;
   // Store indices, ascending, of the owned particles tagged for `slot` (or
   // tagged for none: kStay); `out` is resized to their count.
   virtual void select(int slot, DeviceArray<Index>& out) = 0;

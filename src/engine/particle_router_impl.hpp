@@ -55,29 +55,11 @@ struct TaggedFor {
   GS_HD bool operator()(const Index& i) const { return bits == 0 ? tag[i] == 0 : (tag[i] & bits) != 0; }
 };
 
-// Counts the owned particles farther than `limit` from their reference.
-struct CountMoved {
-  const Vec3d* x;
-  const Vec3d* reference;
-  double limit;
-  PeriodicBox box;
-  unsigned* moved;
-  GS_HD void operator()(Index i) const {
-    if (!(norm2(box.separation(x[i], reference[i])) > limit * limit)) return;
-#if defined(__CUDA_ARCH__)
-    atomicAdd(moved, 1u);
-#else
-    __atomic_fetch_add(moved, 1u, __ATOMIC_RELAXED);
-#endif
-  }
-};
-
 template <class Exec>
 class ParticleRouterImpl final : public ParticleRouter {
  public:
   ParticleRouterImpl()
-      : owner_(Exec::backend), slot_of_rank_(Exec::backend), tag_(Exec::backend), scratch_(Exec::backend),
-        reference_(Exec::backend), moved_(Exec::backend, 1) {}
+      : owner_(Exec::backend), slot_of_rank_(Exec::backend), tag_(Exec::backend), scratch_(Exec::backend) {}
 
   void set_map(const OwnerMapHost& map) override {
     shape_ = map.shape;
@@ -107,20 +89,6 @@ class ParticleRouterImpl final : public ParticleRouter {
     Exec::parallel_for(s.n_owned, TagGhost{s.position.data(), map(), peer_bits(), halo, tag_.data()});
   }
 
-  void keep_reference(const ParticleStore& s) override {
-    reference_.resize(std::size_t(s.n_owned));
-    if (s.n_owned > 0)
-      backend_copy(Exec::backend, reference_.data(), s.position.data(), std::size_t(s.n_owned) * sizeof(Vec3d));
-  }
-
-  // One pass over the owned positions and the read-back of one count.
-  bool moved_beyond(const ParticleStore& s, double limit) override {
-    if (reference_.size() != std::size_t(s.n_owned)) return true;
-    moved_.zero();
-    Exec::parallel_for(s.n_owned, CountMoved{s.position.data(), reference_.data(), limit, shape_.box, moved_.data()});
-    return moved_.to_host()[0] != 0;
-  }
-
   void select(int slot, DeviceArray<Index>& out) override {
     const Index n = Index(tag_.size());
     out.resize(std::size_t(n));
@@ -136,8 +104,6 @@ class ParticleRouterImpl final : public ParticleRouter {
   DeviceArray<int> owner_, slot_of_rank_;
   DeviceArray<RouteTag> tag_;
   DeviceArray<unsigned char> scratch_;
-  DeviceArray<Vec3d> reference_;  // owned positions at keep_reference
-  DeviceArray<unsigned> moved_;
   int self_ = -1, ranks_ = 0;
   std::vector<int> peers_;
 };

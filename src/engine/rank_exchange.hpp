@@ -37,18 +37,20 @@ class RankExchange {
   virtual void migrate(ParticleStore& s, ParticleMovement& k) = 0;
   // Replaces the ghosts with copies of the neighbours' particles that lie
   // within the halo (interaction range plus skin) of this rank's region, and
-  // records who sent what (the send lists, where each peer's ghosts lie) and
-  // the owned positions, for forward_ghosts and halo_stale.
+  // records who sent what (the send lists, where each peer's ghosts lie),
+  // for forward_ghosts.
   virtual void refresh_ghosts(ParticleStore& s, ParticleMovement& k) = 0;
   // The skin [m] the halo adds to the interaction range; returns the skin it
   // will use: less where the decomposition's coarse cells are narrower than
   // range plus skin (its neighbours then hold only ranks within the cells).
   virtual double set_skin(double skin) = 0;
   // Collective: whether the halo must be rebuilt now (migrate or rebalance,
-  // then refresh_ghosts): on some rank `due` holds, its store changed since
-  // the last refresh_ghosts (ParticleStore::revision: removal, insertion), or
-  // an owned particle moved more than half the skin since then. Until then
-  // every contact partner of an owned particle is a ghost already (docs/MULTI_RANK.md).
+  // then refresh_ghosts): on some rank `due` holds (among its reasons, the
+  // kick-drift's verdict that an owned particle may have moved half the skin
+  // since the rebuild: Simulation::exchange_particles) or its store changed
+  // since the last refresh_ghosts (ParticleStore::revision: removal,
+  // insertion). Until then every contact partner of an owned particle is a
+  // ghost already (docs/MULTI_RANK.md).
   virtual bool halo_stale(const ParticleStore& s, ParticleMovement& k, bool due) = 0;
   // Between rebuilds: each ghost gets its owner's changing fields
   // (engine/ghost_forward.hpp) over the send lists of the last refresh_ghosts,

@@ -87,11 +87,13 @@ void Simulation::set_up(const SceneSpec& scene) {
                                 options_.surface_row_for_every_particle});
   const double diameter = 2.0 * largest_radius(scene), skin = scene.verlet_skin * diameter;
   skin_ = kernels_->neighbours().uses_verlet_list() ? skin : 0.0;
-  kernels_->neighbours().watch_moves(!exchange_);
   grid_ = make_cell_grid(scene.domain_min, scene.domain_max, diameter + skin_, periodic_box(scene));
   // The halo's skin, with or without a Verlet list: ghosts then need
-  // selecting only when a particle has moved half of it.
-  if (exchange_) exchange_->set_skin(skin);
+  // selecting only when a particle has moved half of it, which the
+  // kick-drift's verdict on the list tells when it watches half of the
+  // narrower skin.
+  const double halo_skin = exchange_ ? exchange_->set_skin(skin) : skin_;
+  kernels_->neighbours().watch_moves(std::min(skin_, halo_skin));
   walls_ = scene.walls;
   removes_ = scene.has_exits();
   if (removes_)
@@ -277,11 +279,12 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
     timings_.integrate += phase_seconds(t0);
     if (exchange_) exchange_particles();
 
-    // A Verlet list is kept while it covers every contact: on one rank, by
-    // the verdict of the last step's kick-drift (no wait for the device; a
-    // list kept for a step it did not cover is a fault, found a step later);
-    // with ranks it is rebuilt after every rebuild of the halo, whose vote
-    // has already measured the moves. Memory is re-sorted only at a rebuild.
+    // A Verlet list is kept while it covers every contact: by the verdict
+    // of the last step's kick-drift (no wait for the device; a list kept for
+    // a step it did not cover is a fault, found a step later). With ranks
+    // the halo's vote has already taken this rank's verdict and every
+    // other's: a rebuild of the halo changed the store, and so the list is
+    // rebuilt after it. Memory is re-sorted only at a rebuild.
     t0 = Clock::now();
     if (kernels_->neighbours().stale(store_) || surfaces_drifted()) {
       finish_forward();  // (a list built on the ghosts' last positions would be wrong)
@@ -330,7 +333,10 @@ void Simulation::exchange_particles() {
   auto t0 = Clock::now();
   const long long next = step_ + 1;
   const bool balance = options_.rebalance_interval > 0 && next % options_.rebalance_interval == 0;
-  if (!exchange_->halo_stale(store_, kernels_->movement(), balance || rebuild_due_ || surfaces_drifted())) {
+  // This rank's moves: the verdict of the last step's kick-drift (no wait
+  // for the device, as on one rank; neighbor/verlet_list.hpp, ListWatch).
+  const bool due = balance || rebuild_due_ || surfaces_drifted() || kernels_->neighbours().stale(store_);
+  if (!exchange_->halo_stale(store_, kernels_->movement(), due)) {
     exchange_->start_forward(store_, kernels_->movement());
     forward_in_flight_ = true;  // finished by compute_forces
     timings_.exchange += phase_seconds(t0);

@@ -8,8 +8,8 @@
 //
 // Why ascending id: a particle's contact forces are summed in its list's
 // order, so that order must not depend on when the list was built (a rank
-// rebuilds it with its halo, when a particle on any rank has moved half the
-// skin; a single rank when one of its own has), nor
+// rebuilds it with its halo, when a particle on any rank may have moved half
+// the skin; a single rank when one of its own may have), nor
 // on where the particles were then. Ordered by the partners' global ids, the
 // sum is the same for any build schedule, any number of ranks and either
 // backend.
@@ -31,10 +31,10 @@
 // counts into offsets; fill and sort each particle's entries in place:
 // ListPass); only the total comes back to the host, to size the list.
 //
-// Its staleness, on one rank, is read one step late, so that the host never
-// waits for the device inside a step (ListWatch below; docs/DESIGN.md, "The
-// step's data flow"). Ranks skip it: the halo's vote has measured the same
-// moves.
+// Its staleness is read one step late, so that the host never waits for
+// the device inside a step (ListWatch below; docs/DESIGN.md, "The step's
+// data flow"); with ranks it is each rank's part of the halo's vote
+// (RankExchange::halo_stale), whose rebuild rebuilds the list.
 #include <cmath>
 #include <cstdint>
 #include <type_traits>
@@ -168,8 +168,8 @@ struct ListVerdict {
   ParticleId stale_now_particle = 0;  // ...this one (one of them, where several are)
 };
 
-// The margin delta by which a single rank's list is rebuilt ahead of half the
-// skin, as a fraction of the skin. The verdict of step n is read only at step
+// The margin delta by which a list (with ranks, the halo) is rebuilt ahead of
+// half the skin, as a fraction of the skin. The verdict of step n is read only at step
 // n + 1, once that step's drift has run (docs/DESIGN.md, "The step's data
 // flow"); a particle's move in step n + 1 exceeds its move in step n by at
 // most |a| dt^2 (a: its acceleration by the forces of step n), which delta
@@ -213,7 +213,7 @@ struct ListWatch {
   const Vec3f* reference = nullptr;
   PeriodicBox box;
   double half_skin = 0, margin = 0;
-  ListVerdict* verdict = nullptr;  // null: not watched (ranks, or no skin)
+  ListVerdict* verdict = nullptr;  // null: not watched (no skin)
 
   GS_HD bool active() const { return verdict != nullptr; }
   GS_HD void operator()(Index i, ParticleId id, const Vec3d& x, double move) const {

@@ -106,32 +106,6 @@ TEST_P(RouterTest, RefusesMorePeersThanTagBits) {
   EXPECT_THROW(router->set_peers(0, int(peers.size()) + 1, peers), std::runtime_error);
 }
 
-// The halo's rebuild test (docs/MULTI_RANK.md, "What moves when"): a
-// particle farther than the limit from where keep_reference saw it, measured
-// to its nearest image on a periodic axis, or a different set of owned
-// particles. Distances against the limit as the Verlet list's check (ListWatch)
-// computes them, so one rank and many rebuild alike.
-TEST_P(RouterTest, MovedBeyondMeasuresFromTheReferenceByNearestImage) {
-  const Backend b = GetParam();
-  const auto d = SlabDecomposition::from_positions({0, 0, 0}, {1, 1, 1}, 0.1, 2, 2, test::uniform_points(100, {0, 0, 0}, {1, 1, 1}, 5));
-  OwnerMapHost map = d.owner_map();
-  map.shape.box = make_periodic_box(1u, {0, 0, 0}, {1, 1, 1});  // x wraps
-  std::unique_ptr<ParticleRouter> router = make_particle_router(b);
-  router->set_map(map);
-  const std::vector<Vec3d> start{{0.5, 0.5, 0.5}, {0.99, 0.2, 0.2}};
-  router->keep_reference(store_at(b, start));
-  const double limit = 0.05;
-  auto moved = [&](std::vector<Vec3d> x) { return router->moved_beyond(store_at(b, x), limit); };
-  EXPECT_FALSE(moved(start));
-  EXPECT_FALSE(moved({{0.5, 0.5, 0.5 + 0.049}, {0.99, 0.2, 0.2}}));
-  EXPECT_TRUE(moved({{0.5, 0.5, 0.5 + 0.051}, {0.99, 0.2, 0.2}}));
-  EXPECT_TRUE(moved({{0.5, 0.5, 0.5}, {0.99, 0.2 - 0.051, 0.2}}));
-  // Across the periodic face in x: 0.99 -> 0.02 is a move of 0.03, not 0.97.
-  EXPECT_FALSE(moved({{0.5, 0.5, 0.5}, {0.02, 0.2, 0.2}}));
-  EXPECT_TRUE(moved({{0.5, 0.5, 0.5}, {0.05, 0.2, 0.2}}));
-  EXPECT_TRUE(moved({{0.5, 0.5, 0.5}})) << "a particle fewer than remembered";
-}
-
 INSTANTIATE_TEST_SUITE_P(Backends, RouterTest, testing::ValuesIn(test::test_backends()), test::backend_label);
 
 }  // namespace
