@@ -1,21 +1,24 @@
 // The Verlet list's staleness read one step late (neighbor/verlet_list.hpp,
-// ListWatch): on one rank the verdict of step n decides the rebuild at step
-// n + 1, so the list is rebuilt when a particle's distance from where the
+// ListWatch): the verdict of step n decides the rebuild at step n + 1 (with
+// ranks, of the halo too), so the list is rebuilt when a particle's distance from where the
 // list saw it, plus its last move, plus the margin delta (a tenth of the
 // skin) exceeds half the skin; and where a list so kept turns out, a step
 // later, not to have covered its step (a particle more than half the skin
 // from where the list saw it), the run stops with a fault naming the
-// particle and step. Checked on the check itself, on the steps a run
-// rebuilds at (computed here from the rule, for spheres in free flight), and
-// on a sphere at rest struck by a wall hard enough to move it 1.5 skins in
-// one step (fault), or gently (none).
+// particle and step. Checked on the check itself, on the skin it holds the
+// moves to, on the steps a run rebuilds at (computed here from the rule, for
+// spheres in free flight), and on a sphere at rest struck by a wall hard
+// enough to move it 1.5 skins in one step (fault), or gently (none).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <regex>
 #include <string>
 
+#include "backend/cpu/cpu_exec.hpp"
 #include "core/fault.hpp"
+#include "engine/neighbour_finder.hpp"
+#include "neighbor/cell_grid.hpp"
 #include "neighbor/verlet_list.hpp"
 #include "support/support.hpp"
 
@@ -50,6 +53,36 @@ TEST(ListLag, VerdictCountsTheLastMoveAndTheMargin) {
   const ListVerdict v = verdict_at(0.51, 0.0);
   EXPECT_EQ(v.stale_now, 1);
   EXPECT_EQ(v.stale_now_particle, ParticleId(9));
+}
+
+// With ranks a rank's kick-drift watches its moves against half of the
+// halo's skin where the coarse cells cut that below the list's
+// (Simulation's constructor, NeighbourSearch::watch_moves), since its verdict
+// is also the halo's: the watch holds the moves to half of the narrower skin,
+// with the list's margin; a wider skin leaves the list's; none, no watch (and
+// every step stale).
+TEST(ListLag, WatchHoldsTheMovesToHalfTheNarrowerSkin) {
+  ParticleStore s;
+  s.place_on(Backend::cpu);
+  s.n_owned = 2;
+  s.position.from_host({{0, 0, 0}, {0.003, 0, 0}});
+  s.radius.from_host({float(kRadius), float(kRadius)});
+  s.id.from_host({0, 1});
+  DeviceArray<unsigned char> scratch{Backend::cpu};
+  NeighbourFinder<CpuExec> finder{scratch};
+  const double skin = 0.0002;
+  finder.build(s, make_cell_grid({-0.01, -0.01, -0.01}, {0.01, 0.01, 0.01}, 2 * kRadius + skin), skin);
+  finder.watch_moves(0.5 * skin);
+  const ListWatch narrow = finder.watch(s, 1);
+  ASSERT_TRUE(narrow.active());
+  EXPECT_NE(narrow.reference, nullptr);
+  EXPECT_EQ(narrow.half_skin, 0.25 * skin);
+  EXPECT_EQ(narrow.margin, kListMarginOfSkin * skin);
+  finder.watch_moves(3 * skin);
+  EXPECT_EQ(finder.watch(s, 2).half_skin, 0.5 * skin);
+  finder.watch_moves(0);
+  EXPECT_FALSE(finder.watch(s, 3).active());
+  EXPECT_TRUE(finder.stale(s));
 }
 
 class ListLagRun : public testing::TestWithParam<Backend> {};
