@@ -11,7 +11,7 @@
 # step waits for the device between its phases, so the exchange's figure is
 # what the exchange costs where nothing hides it; what the overlap with the
 # forces gains shows in the step's time.
-#   [N=16000000] [STEPS=300] [BACKEND=cuda] [RANKS=2] [EXCHANGE=host] \
+#   [N=16000000] [STEPS=300] [BACKEND=cuda] [RANKS=2] [EXCHANGE=host] [ROUNDS=1] \
 #     bench/exchange_share.sh BUILD OUT [BASE_BUILD]
 # BACKEND=cuda runs every rank on GPU 0 (ranks sharing one GPU move their
 # messages through host buffers, EXCHANGE=host); BACKEND=cpu runs CPU ranks
@@ -58,5 +58,9 @@ run() {  # run LABEL BUILD
   share "$log"
 }
 
-[[ -n $base ]] && run before "$base"
-run after "$build"
+# ROUNDS alternated: two ranks sharing a GPU take turns on it by time slices,
+# and one run of a build differs from the next by a third (docs/PERFORMANCE.md).
+for r in $(seq 1 "${ROUNDS:-1}"); do
+  [[ -n $base ]] && run "before$r" "$base"
+  run "after$r" "$build"
+done
