@@ -78,12 +78,13 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   if (fields_kept != 0) {
     double springs = 0;  // one contact's history fields
     double largest = sizeof(ParticleId);  // the largest array of a surface table
+    auto add_field = [&](double bytes) {
+      springs += bytes;
+      largest = std::max(largest, bytes);
+    };
     const bool wide = real == 8;
-#define GS_ADD_FIELD(name, value, bit)                                                  \
-  if (fields_kept & (bit)) {                                                           \
-    springs += wide ? sizeof(value<double>) : sizeof(value<float>);                    \
-    largest = std::max(largest, double(wide ? sizeof(value<double>) : sizeof(value<float>))); \
-  }
+#define GS_ADD_FIELD(name, value, bit) \
+  if (fields_kept & (bit)) add_field(wide ? sizeof(value<double>) : sizeof(value<float>));
     GS_HISTORY_FIELDS(GS_ADD_FIELD)
 #undef GS_ADD_FIELD
     // A touching flag and the springs per list entry (engine/pair_history.hpp);

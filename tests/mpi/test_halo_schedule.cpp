@@ -72,9 +72,9 @@ void expect_same_state(const ParticleSnapshot& all, const ParticleSnapshot& ref)
 // neighbor/verlet_list.hpp), the vote taking every rank's particles as one
 // rank takes all of them. So not every step (the whole point), and never
 // later than a particle has moved half the skin since the last rebuild
-// (contacts would be missed): at least at each step the exact rule, counted
+// (contacts would be missed): at least as often as the exact rule, counted
 // here from the one-rank run's positions after each step (the same bits as
-// the ranks'), names.
+// the ranks').
 TEST(HaloSchedule, RanksRebuildWhenAParticleMayHaveMovedHalfTheSkin) {
   const SceneSpec s = falling_bed();
   RunOptions o;
