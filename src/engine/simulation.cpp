@@ -90,10 +90,9 @@ void Simulation::set_up(const SceneSpec& scene) {
   grid_ = make_cell_grid(scene.domain_min, scene.domain_max, diameter + skin_, periodic_box(scene));
   // The halo's skin, with or without a Verlet list: ghosts then need
   // selecting only when a particle has moved half of it, which the
-  // kick-drift's verdict on the list tells when it watches half of the
-  // narrower skin.
-  const double halo_skin = exchange_ ? exchange_->set_skin(skin) : skin_;
-  kernels_->neighbours().watch_moves(std::min(skin_, halo_skin));
+  // kick-drift's verdict on the list tells (it watches half of the narrower
+  // of this and the list's skin).
+  kernels_->neighbours().watch_moves(exchange_ ? exchange_->set_skin(skin) : skin_);
   walls_ = scene.walls;
   removes_ = scene.has_exits();
   if (removes_)

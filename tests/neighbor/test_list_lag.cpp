@@ -17,6 +17,7 @@
 
 #include "backend/cpu/cpu_exec.hpp"
 #include "core/fault.hpp"
+#include "core/periodic_box.hpp"
 #include "engine/neighbour_finder.hpp"
 #include "neighbor/cell_grid.hpp"
 #include "neighbor/verlet_list.hpp"
@@ -83,6 +84,25 @@ TEST(ListLag, WatchHoldsTheMovesToHalfTheNarrowerSkin) {
   finder.watch_moves(0);
   EXPECT_FALSE(finder.watch(s, 3).active());
   EXPECT_TRUE(finder.stale(s));
+}
+
+// A particle that crossed a periodic face has moved by the separation from
+// its reference's nearest image (with ranks the halo counts on it too): in a
+// box of 10 mm that wraps in x, 9.95 mm -> 0.04 mm is a move of 0.09 mm, not
+// 9.91, and 9.95 -> 0.06 mm one of 0.11, beyond half the skin (0.1 mm).
+TEST(ListLag, VerdictMeasuresAMoveAcrossAPeriodicFaceToTheNearestImage) {
+  const double skin = 0.0002;
+  const PeriodicBox box = make_periodic_box(1u, {0, 0, 0}, {0.01, 0.01, 0.01});
+  const Vec3f reference(0.00995f, 0.005f, 0.005f);
+  auto stale_now = [&](double x) {
+    ListVerdict v;
+    const ListWatch watch{&reference, box, 0.5 * skin, kListMarginOfSkin * skin, &v};
+    watch(0, 9, Vec3d(x, 0.005, 0.005), 0);
+    return v.stale_now;
+  };
+  EXPECT_EQ(stale_now(0.00004), 0);
+  EXPECT_EQ(stale_now(0.00006), 1);
+  EXPECT_EQ(stale_now(0.00995 - 0.00011), 1);  // the same move within the box
 }
 
 class ListLagRun : public testing::TestWithParam<Backend> {};
