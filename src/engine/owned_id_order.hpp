@@ -1,19 +1,21 @@
 #pragma once
-// The owned particles' store indices in ascending id order, for the kernels
-// that put fields in id order (snapshots, checkpoints, the particles on
-// walls). Ids are unique: where the owned ids span exactly as many values as
-// there are particles (one rank's run without removals), particle k's place
-// is its id less the smallest, a scatter that needs nothing beside the order.
-// Elsewhere, on a GPU a radix sort of (id, index) pairs on the device, its
-// keys and second buffers in the step's staging buffer as the cell list's
-// sort has them (12 bytes per particle there, which a build frees again);
-// on the CPU the host's linear-time order (core/id_order.hpp). Both give the
-// one order.
+// The owned particles' order by ascending id, for the kernels that put
+// fields in id order (snapshots, checkpoints, the particles on walls). Ids
+// are unique: where the owned ids span exactly as many values as there are
+// particles (one rank's run without removals), particle k's place is its id
+// less the smallest, and the order is that scatter (engine/row_order.hpp):
+// nothing is held beside the run. Elsewhere the store indices in id order,
+// an order array: on a GPU a radix sort of (id, index) pairs on the device,
+// its keys and second buffers in the step's staging buffer as the cell
+// list's sort has them (12 bytes per particle there, which a build frees
+// again); on the CPU the host's linear-time order (core/id_order.hpp). Both
+// give the one order.
 #include <vector>
 
 #include "backend/device_array.hpp"
 #include "core/id_order.hpp"
 #include "core/id_range.hpp"
+#include "engine/row_order.hpp"
 #include "neighbor/cell_list.hpp"
 
 namespace gs {
@@ -37,25 +39,37 @@ struct PlaceById {
   GS_HD void operator()(Index k) const { order[id[k] - lowest] = k; }
 };
 
+// The owned order as a RowOrder: the scatter by id where the ids are dense,
+// else a gather over `storage` (an empty array, filled here; left empty
+// for the scatter).
 template <class Exec>
-void owned_id_order(const ParticleId* id, Index n, DeviceArray<Index>& order, DeviceArray<unsigned char>& scratch) {
-  order.resize_discarding(std::size_t(n));
-  if (n == 0) return;
+RowOrder owned_row_order(const ParticleId* id, Index n, DeviceArray<Index>& storage,
+                         DeviceArray<unsigned char>& scratch) {
+  if (n == 0) return RowOrder{};
   const IdRange r = Exec::id_range(id, n, scratch);
-  if (std::uint64_t(r.highest) - std::uint64_t(r.lowest) + 1 == std::uint64_t(n)) {
-    Exec::parallel_for(n, PlaceById{id, r.lowest, order.data()});
-    return;
-  }
+  if (std::uint64_t(r.highest) - std::uint64_t(r.lowest) + 1 == std::uint64_t(n))
+    return RowOrder::scatter(id, r.lowest, n);
+  storage.resize_discarding(std::size_t(n));
   if constexpr (Exec::backend == Backend::cpu) {
     const std::vector<std::size_t> o = id_order(std::vector<ParticleId>(id, id + n));
-    Index* to = order.data();
+    Index* to = storage.data();
     for (Index k = 0; k < n; ++k) to[k] = Index(o[std::size_t(k)]);
   } else {
     static_assert(sizeof(ParticleId) == sizeof(std::uint32_t), "ids are the sort's 32-bit keys");
-    sort_in_scratch<Exec, std::uint32_t>(n, 32, order.data(), scratch, [&](SortPairs<std::uint32_t>& p) {
+    sort_in_scratch<Exec, std::uint32_t>(n, 32, storage.data(), scratch, [&](SortPairs<std::uint32_t>& p) {
       Exec::parallel_for(n, IdKeys{id, p.keys, p.values});
     });
   }
+  return RowOrder::gather(storage.data());
+}
+
+// The same as an order array of n store indices (the scatter written out).
+template <class Exec>
+void owned_id_order(const ParticleId* id, Index n, DeviceArray<Index>& order, DeviceArray<unsigned char>& scratch) {
+  const RowOrder o = owned_row_order<Exec>(id, n, order, scratch);
+  if (!o.scatters()) return;
+  order.resize_discarding(std::size_t(n));
+  Exec::parallel_for(n, PlaceById{id, o.lowest, order.data()});
 }
 
 }  // namespace gs

@@ -255,20 +255,18 @@ struct ContactRows {
   }
 };
 
-// Rows of field T of particles which[k] (or order[first + k], or first + k
-// where both are null), in the host's or message's type U: row-major rows
-// of `width` (to[k * width + r]) or a packed slot-major block of m
-// (to[r * m + k]). from[source]: the field's array of each source.
+// Row k of field T, from store index i (engine/row_order.hpp, for_rows), in
+// the host's or message's type U: row-major rows of `width` (to[k * width +
+// r]) or a packed slot-major block of m (to[r * m + k]). from[source]: the
+// field's array of each source.
 template <class T, class U>
 struct ContactRowValues {
   ContactRows rows;
   const T* from[4];
   U* to;
-  const Index* order;
-  Index first, m;
+  Index m;
   bool slot_major;
-  GS_HD void operator()(Index k) const {
-    const Index i = order ? order[first + k] : first + k;
+  GS_HD void operator()(Index k, Index i) const {
     auto at = [&](int r) -> U& {
       return slot_major ? to[std::size_t(r) * std::size_t(m) + std::size_t(k)]
                         : to[std::size_t(k) * std::size_t(rows.width) + std::size_t(r)];
@@ -283,13 +281,11 @@ struct ContactRowValues {
 struct ContactRowPartners {
   ContactRows rows;
   ParticleId* to;
-  const Index* order;
-  Index first, m;
+  Index m;
   bool slot_major;
   const ParticleId* id;
   Fault* fault;
-  GS_HD void operator()(Index k) const {
-    const Index i = order ? order[first + k] : first + k;
+  GS_HD void operator()(Index k, Index i) const {
     auto at = [&](int r) -> ParticleId& {
       return slot_major ? to[std::size_t(r) * std::size_t(m) + std::size_t(k)]
                         : to[std::size_t(k) * std::size_t(rows.width) + std::size_t(r)];
@@ -300,14 +296,11 @@ struct ContactRowPartners {
   }
 };
 
-// Contacts of particle order[first + k] (or first + k), at count[k].
+// Row k: the contacts of store index i.
 struct CountRowContacts {
   ContactRows rows;
-  const Index* order;
-  Index first;
   std::uint16_t* count;
-  GS_HD void operator()(Index k) const {
-    const Index i = order ? order[first + k] : first + k;
+  GS_HD void operator()(Index k, Index i) const {
     count[k] = std::uint16_t(rows.for_each(i, [](int, int, std::size_t, ParticleId) {}));
   }
 };

@@ -12,6 +12,7 @@
 #include "core/particle_snapshot.hpp"
 #include "engine/particle_message.hpp"
 #include "engine/particle_store.hpp"
+#include "engine/row_order.hpp"
 
 namespace gs {
 
@@ -59,23 +60,25 @@ class ParticleMovement {
   HostHistory history(const ParticleStore& s) const {
     HostHistory h;
     HostPins unpinned(false);
-    history_to_host(s, nullptr, h, unpinned);
+    history_to_host(s, RowOrder{}, h, unpinned);
     return h;
   }
-  // The owned particles to the host, row r from store index order[r] (a
-  // backend array of n_owned indices; null: store order): every kept
-  // particle field, with_forces the forces and torques in fp64 (zero torques
-  // where no effect makes them; else both left empty) and, in runs with
-  // contact history, each particle's contacts (occupied slots; output needs
-  // these, not the whole history). Each field is put in order on the
-  // backend and copied once; `into`'s arrays keep their memory from call to
-  // call, `pins` page-locks them.
-  virtual void owned_to_host(const ParticleStore& s, const Index* order, ParticleSnapshot& into, HostPins& pins,
+  // The owned particles to the host in `order` (engine/row_order.hpp; the
+  // default RowOrder: store order): every kept particle field, with_forces
+  // the forces and torques in fp64 (zero torques where no effect makes them;
+  // else both left empty) and, in runs with contact history, each particle's
+  // contacts (occupied slots; output needs these, not the whole history).
+  // Each field is put in order on the backend and copied once; `into`'s
+  // arrays keep their memory from call to call, `pins` page-locks them.
+  virtual void owned_to_host(const ParticleStore& s, const RowOrder& order, ParticleSnapshot& into, HostPins& pins,
                              bool with_forces) const = 0;
   // The same for the contact history (empty rows without history).
-  virtual void history_to_host(const ParticleStore& s, const Index* order, HostHistory& into, HostPins& pins) const = 0;
-  // The owned particles' store indices in ascending id order, into `order`
-  // (engine/owned_id_order.hpp).
+  virtual void history_to_host(const ParticleStore& s, const RowOrder& order, HostHistory& into,
+                               HostPins& pins) const = 0;
+  // The owned particles in ascending id order (engine/owned_id_order.hpp):
+  // as a RowOrder, `storage` (an empty array) holding the order array where
+  // the ids are not dense; or as that array of store indices, always.
+  virtual RowOrder owned_row_order(const ParticleStore& s, DeviceArray<Index>& storage) const = 0;
   virtual void owned_id_order(const ParticleStore& s, DeviceArray<Index>& order) const = 0;
   // Ids and history rows of the owned particles with a stored contact on an
   // analytic wall, in the order `order` gives the owned particles (store

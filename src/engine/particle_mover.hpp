@@ -9,6 +9,7 @@
 
 #include "engine/gather.hpp"
 #include "engine/pair_carry.hpp"
+#include "engine/output_chunk.hpp"
 #include "engine/owned_id_order.hpp"
 #include "engine/particle_movement.hpp"
 #include "engine/step_state.hpp"
@@ -78,11 +79,14 @@ class ParticleMover final : public ParticleMovement {
     if (!st_.torque) return std::vector<Vec3d>(s.n_owned);
     return widened(st_.forces.torque, s.n_owned);
   }
-  void owned_to_host(const ParticleStore& s, const Index* order, ParticleSnapshot& into, HostPins& pins,
+  void owned_to_host(const ParticleStore& s, const RowOrder& order, ParticleSnapshot& into, HostPins& pins,
                      bool with_forces) const override;
-  void history_to_host(const ParticleStore& s, const Index* order, HostHistory& into, HostPins& pins) const override;
+  void history_to_host(const ParticleStore& s, const RowOrder& order, HostHistory& into, HostPins& pins) const override;
   void wall_contact_history(const ParticleStore& s, const Index* order, ParticleRecords& into,
                             HostPins& pins) const override;
+  RowOrder owned_row_order(const ParticleStore& s, DeviceArray<Index>& storage) const override {
+    return gs::owned_row_order<Exec>(s.id.data(), s.n_owned, storage, st_.staging);
+  }
   void owned_id_order(const ParticleStore& s, DeviceArray<Index>& order) const override {
     gs::owned_id_order<Exec>(s.id.data(), s.n_owned, order, st_.staging);
   }

@@ -8,18 +8,13 @@
 
 namespace gs {
 
-// Row k of `to` from store index order[first + k] (order null: first + k),
-// in the host's type U (fp32 forces widen to fp64 exactly).
+// Row k of `to` from store index i (engine/row_order.hpp, for_rows), in the
+// host's type U (fp32 forces widen to fp64 exactly).
 template <class T, class U>
-struct GatherRowsAs {
+struct RowAs {
   const T* from;
   U* to;
-  const Index* order;
-  Index first;
-  GS_HD void operator()(Index k) const {
-    const Index r = first + k;
-    to[k] = U(from[order ? order[r] : r]);
-  }
+  GS_HD void operator()(Index k, Index i) const { to[k] = U(from[i]); }
 };
 
 // Host array `out` of n rows of `width` values, written by rows(first, m,
@@ -37,17 +32,8 @@ void rows_to_host(std::vector<U>& out, Index n, std::size_t width, HostPins& pin
   if constexpr (Exec::backend == Backend::cpu) {
     rows(0, n, out.data());
   } else {
-    // Chunks of 8 to 64 MiB: few enough that the launches and waits are
-    // negligible, small enough that the bounce buffer stays small; within
-    // that, as large as the staging array already is (a build frees it,
-    // engine/neighbour_finder.hpp; what the exchange or the last output grew
-    // it to stays), so that output adds no device memory where the run has
-    // 8 MiB of staging or more.
-    constexpr std::size_t kLeastChunkBytes = std::size_t(8) << 20, kMostChunkBytes = std::size_t(64) << 20;
-    const std::size_t chunk_most = std::clamp(staging.bytes(), kLeastChunkBytes, kMostChunkBytes);
-    const std::size_t row_bytes = width * sizeof(U);
-    const Index chunk = Index(std::max<std::size_t>(1, std::min<std::size_t>(std::size_t(n), chunk_most / row_bytes)));
-    const std::size_t chunk_bytes = std::size_t(chunk) * row_bytes;
+    const Index chunk = output_chunk_rows(n, width * sizeof(U), staging.bytes());
+    const std::size_t row_bytes = width * sizeof(U), chunk_bytes = std::size_t(chunk) * row_bytes;
     staging.resize_discarding(chunk_bytes);
     U* to = reinterpret_cast<U*>(staging.data());
     unsigned char* bounce = pins.bounce(Exec::backend, chunk_bytes);  // null: straight to `out`
@@ -62,17 +48,17 @@ void rows_to_host(std::vector<U>& out, Index n, std::size_t width, HostPins& pin
   }
 }
 
-// Field `a`'s first n values, row r from store index order[r], as U.
+// Field `a`'s first n values in `order`, as U.
 template <class Exec, class T, class U>
-void field_to_host(const DeviceArray<T>& a, const Index* order, Index n, std::vector<U>& out, HostPins& pins,
+void field_to_host(const DeviceArray<T>& a, const RowOrder& order, Index n, std::vector<U>& out, HostPins& pins,
                    DeviceArray<unsigned char>& staging) {
   rows_to_host<Exec>(out, n, 1, pins, staging, [&](Index first, Index m, U* to) {
-    Exec::parallel_for(m, GatherRowsAs<T, U>{a.data(), to, order, first});
+    for_rows<Exec>(order, first, m, RowAs<T, U>{a.data(), to});
   });
 }
 
 template <class Exec, class Real>
-void ParticleMover<Exec, Real>::owned_to_host(const ParticleStore& s, const Index* order, ParticleSnapshot& into,
+void ParticleMover<Exec, Real>::owned_to_host(const ParticleStore& s, const RowOrder& order, ParticleSnapshot& into,
                                               HostPins& pins, bool with_forces) const {
   const Index n = s.n_owned;
   DeviceArray<unsigned char>& staging = st_.staging;
@@ -104,7 +90,7 @@ void ParticleMover<Exec, Real>::owned_to_host(const ParticleStore& s, const Inde
   }
   const ContactRows rows = pairs_.rows(s);
   rows_to_host<Exec>(into.contacts, n, 1, pins, staging, [&](Index first, Index m, std::uint16_t* to) {
-    Exec::parallel_for(m, CountRowContacts{rows, order, first, to});
+    for_rows<Exec>(order, first, m, CountRowContacts{rows, to});
   });
 }
 
@@ -112,7 +98,7 @@ void ParticleMover<Exec, Real>::owned_to_host(const ParticleStore& s, const Inde
 // ContactRows), widened to fp64. Only the fields the run keeps: a checkpoint
 // of a frictional bed without rolling resistance carries no rolling zeros.
 template <class Exec, class Real>
-void ParticleMover<Exec, Real>::history_to_host(const ParticleStore& s, const Index* order, HostHistory& into,
+void ParticleMover<Exec, Real>::history_to_host(const ParticleStore& s, const RowOrder& order, HostHistory& into,
                                                 HostPins& pins) const {
   into.slots = st_.row_width;
   into.partner.clear();
@@ -122,14 +108,13 @@ void ParticleMover<Exec, Real>::history_to_host(const ParticleStore& s, const In
   const std::size_t width = std::size_t(st_.row_width);
   const ContactRows rows = pairs_.rows(s);
   rows_to_host<Exec>(into.partner, n, width, pins, st_.staging, [&](Index first, Index m, ParticleId* to) {
-    Exec::parallel_for(m, ContactRowPartners{rows, to, order, first, m, false, s.id.data(), st_.fault.data()});
+    for_rows<Exec>(order, first, m, ContactRowPartners{rows, to, m, false, s.id.data(), st_.fault.data()});
   });
   pairs_.for_each_field_sources(into, [&](int, const auto& from, auto& out) {
     using T = std::remove_const_t<std::remove_pointer_t<std::decay_t<decltype(from[0])>>>;
     using U = typename std::decay_t<decltype(out)>::value_type;
     rows_to_host<Exec>(out, n, width, pins, st_.staging, [&](Index first, Index m, U* to) {
-      Exec::parallel_for(m, ContactRowValues<T, U>{rows, {from[0], from[1], from[2], from[3]}, to, order, first, m,
-                                                   false});
+      for_rows<Exec>(order, first, m, ContactRowValues<T, U>{rows, {from[0], from[1], from[2], from[3]}, to, m, false});
     });
   });
 }
@@ -166,7 +151,7 @@ void ParticleMover<Exec, Real>::wall_contact_history(const ParticleStore& s, con
   }
   const std::size_t width = std::size_t(std::max(0, h.slots));
   rows_to_host<Exec>(into.id, m, 1, pins, st_.staging, [&](Index first, Index k, ParticleId* to) {
-    Exec::parallel_for(k, GatherRowsAs<ParticleId, ParticleId>{s.id.data(), to, which.data(), first});
+    for_rows<Exec>(RowOrder::gather(which.data()), first, k, RowAs<ParticleId, ParticleId>{s.id.data(), to});
   });
   if (!st_.keeps_history()) {
     h.partner.clear();
@@ -176,15 +161,16 @@ void ParticleMover<Exec, Real>::wall_contact_history(const ParticleStore& s, con
   // Each particle's row (engine/pair_history.hpp), widened to the host type.
   const ContactRows rows = pairs_.rows(s);
   rows_to_host<Exec>(h.partner, m, width, pins, st_.staging, [&](Index first, Index k, ParticleId* to) {
-    Exec::parallel_for(k, ContactRowPartners{rows, to, which.data(), first, k, false, s.id.data(), st_.fault.data()});
+    for_rows<Exec>(RowOrder::gather(which.data()), first, k,
+                   ContactRowPartners{rows, to, k, false, s.id.data(), st_.fault.data()});
   });
   for_each_history_field(h, [](const char*, unsigned, auto& rows) { rows.clear(); });
   pairs_.for_each_field_sources(h, [&](int, const auto& from, auto& out) {
     using T = std::remove_const_t<std::remove_pointer_t<std::decay_t<decltype(from[0])>>>;
     using U = typename std::decay_t<decltype(out)>::value_type;
     rows_to_host<Exec>(out, m, width, pins, st_.staging, [&](Index first, Index k, U* to) {
-      Exec::parallel_for(k, ContactRowValues<T, U>{rows, {from[0], from[1], from[2], from[3]}, to, which.data(), first,
-                                                   k, false});
+      for_rows<Exec>(RowOrder::gather(which.data()), first, k,
+                     ContactRowValues<T, U>{rows, {from[0], from[1], from[2], from[3]}, to, k, false});
     });
   });
 }

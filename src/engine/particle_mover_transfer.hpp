@@ -74,13 +74,14 @@ MessageHeader ParticleMover<Exec, Real>::pack(const ParticleStore& s, const Devi
   // Each particle's row of contacts (engine/pair_history.hpp), slot-major.
   const Index m = Index(w.size());
   const ContactRows rows = pairs_.rows(s);
-  Exec::parallel_for(m, ContactRowPartners{rows, reinterpret_cast<ParticleId*>(b + at.partner), w.data(), 0, m, true,
-                                           s.id.data(), st_.fault.data()});
+  const RowOrder which = RowOrder::gather(w.data());
+  for_rows<Exec>(which, 0, m, ContactRowPartners{rows, reinterpret_cast<ParticleId*>(b + at.partner), m, true,
+                                                 s.id.data(), st_.fault.data()});
   pairs_.for_each_field_sources(st_.history, [&](int index, const auto& from, const auto&) {
     using T = std::remove_const_t<std::remove_pointer_t<std::decay_t<decltype(from[0])>>>;
-    Exec::parallel_for(m, ContactRowValues<T, T>{rows, {from[0], from[1], from[2], from[3]},
-                                                 reinterpret_cast<T*>(b + at.history[std::size_t(index)]), w.data(),
-                                                 0, m, true});
+    for_rows<Exec>(which, 0, m, ContactRowValues<T, T>{rows, {from[0], from[1], from[2], from[3]},
+                                                       reinterpret_cast<T*>(b + at.history[std::size_t(index)]), m,
+                                                       true});
   });
   return h;
 }

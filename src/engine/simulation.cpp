@@ -425,11 +425,20 @@ DeviceArray<Index> Simulation::owned_id_order_on_backend() const {
   return order;
 }
 
+// The same as a RowOrder (engine/row_order.hpp): where the owned ids are
+// dense, a scatter by id that holds no order array beside the run; else the
+// order array, in `storage`.
+RowOrder Simulation::owned_row_order_on_backend(DeviceArray<Index>& storage) const {
+  kernels_->synchronize();
+  return kernels_->movement().owned_row_order(store_, storage);
+}
+
 void Simulation::snapshot_into(ParticleSnapshot& s, HostPins& pins, bool with_forces) const {
-  const DeviceArray<Index> order = owned_id_order_on_backend();
+  DeviceArray<Index> storage(store_.backend);
+  const RowOrder order = owned_row_order_on_backend(storage);
   s.time = time_;
   s.step = step_;
-  kernels_->movement().owned_to_host(store_, order.data(), s, pins, with_forces);
+  kernels_->movement().owned_to_host(store_, order, s, pins, with_forces);
 }
 
 void Simulation::measure_contacts_at(long long step) {
@@ -473,8 +482,9 @@ HostHistory Simulation::history() const {
 }
 
 void Simulation::history_into(HostHistory& h, HostPins& pins) const {
-  const DeviceArray<Index> order = owned_id_order_on_backend();
-  kernels_->movement().history_to_host(store_, order.data(), h, pins);
+  DeviceArray<Index> storage(store_.backend);
+  const RowOrder order = owned_row_order_on_backend(storage);
+  kernels_->movement().history_to_host(store_, order, h, pins);
 }
 
 std::size_t Simulation::device_bytes() const {
