@@ -1,15 +1,14 @@
 #pragma once
 // The owned particles' order by ascending id, for the kernels that put
-// fields in id order (snapshots, checkpoints, the particles on walls). Ids
-// are unique: where the owned ids span exactly as many values as there are
-// particles (one rank's run without removals), particle k's place is its id
-// less the smallest, and the order is that scatter (engine/row_order.hpp):
-// nothing is held beside the run. Elsewhere the store indices in id order,
-// an order array: on a GPU a radix sort of (id, index) pairs on the device,
-// its keys and second buffers in the step's staging buffer as the cell
-// list's sort has them (12 bytes per particle there, which a build frees
-// again); on the CPU the host's linear-time order (core/id_order.hpp). Both
-// give the one order.
+// fields in id order (snapshots, checkpoints). Ids are unique: where the
+// owned ids span exactly as many values as there are particles (one rank's
+// run without removals), particle k's place is its id less the smallest,
+// and the order is that scatter (engine/row_order.hpp): nothing is held
+// beside the run. Elsewhere the store indices in id order, an order array:
+// on a GPU a radix sort of (id, index) pairs on the device, its keys and
+// second buffers in the step's staging buffer as the cell list's sort has
+// them (12 bytes per particle there, which a build frees again); on the CPU
+// the host's linear-time order (core/id_order.hpp). Both give the one order.
 #include <vector>
 
 #include "backend/device_array.hpp"
@@ -29,14 +28,6 @@ struct IdKeys {
     keys[k] = id[k];
     values[k] = k;
   }
-};
-
-// order[id[k] - lowest] = k.
-struct PlaceById {
-  const ParticleId* id;
-  ParticleId lowest;
-  Index* order;
-  GS_HD void operator()(Index k) const { order[id[k] - lowest] = k; }
 };
 
 // The owned order as a RowOrder: the scatter by id where the ids are dense,
@@ -61,15 +52,6 @@ RowOrder owned_row_order(const ParticleId* id, Index n, DeviceArray<Index>& stor
     });
   }
   return RowOrder::gather(storage.data());
-}
-
-// The same as an order array of n store indices (the scatter written out).
-template <class Exec>
-void owned_id_order(const ParticleId* id, Index n, DeviceArray<Index>& order, DeviceArray<unsigned char>& scratch) {
-  const RowOrder o = owned_row_order<Exec>(id, n, order, scratch);
-  if (!o.scatters()) return;
-  order.resize_discarding(std::size_t(n));
-  Exec::parallel_for(n, PlaceById{id, o.lowest, order.data()});
 }
 
 }  // namespace gs

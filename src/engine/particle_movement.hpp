@@ -75,17 +75,15 @@ class ParticleMovement {
   // The same for the contact history (empty rows without history).
   virtual void history_to_host(const ParticleStore& s, const RowOrder& order, HostHistory& into,
                                HostPins& pins) const = 0;
-  // The owned particles in ascending id order (engine/owned_id_order.hpp):
-  // as a RowOrder, `storage` (an empty array) holding the order array where
-  // the ids are not dense; or as that array of store indices, always.
+  // The owned particles in ascending id order (engine/owned_id_order.hpp),
+  // `storage` (an empty array) holding the order array where the ids are
+  // not dense.
   virtual RowOrder owned_row_order(const ParticleStore& s, DeviceArray<Index>& storage) const = 0;
-  virtual void owned_id_order(const ParticleStore& s, DeviceArray<Index>& order) const = 0;
   // Ids and history rows of the owned particles with a stored contact on an
-  // analytic wall, in the order `order` gives the owned particles (store
-  // indices): what the wall loads need of the history. As owned_to_host,
-  // into arrays kept from call to call (the other fields of `into` left empty).
-  virtual void wall_contact_history(const ParticleStore& s, const Index* order, ParticleRecords& into,
-                                    HostPins& pins) const = 0;
+  // analytic wall, in ascending id order: what the wall loads need of the
+  // history. As owned_to_host, into arrays kept from call to call (the
+  // other fields of `into` left empty).
+  virtual void wall_contact_history(const ParticleStore& s, ParticleRecords& into, HostPins& pins) const = 0;
 
   virtual void synchronize() const = 0;  // waits for the backend's work
   virtual std::size_t bytes() const = 0;  // forces, history and staging

@@ -34,11 +34,16 @@ struct TouchesWall {
   }
 };
 
-// The same of the particle at position k of an order of store indices.
-struct TouchesWallAt {
-  TouchesWall touches;
-  const Index* order;
-  GS_HD bool operator()(Index k) const { return touches(order[k]); }
+// keys[k] = the id of selected particle at[k], values[k] = at[k].
+struct SelectedIdKeys {
+  const ParticleId* id;
+  const Index* at;
+  std::uint32_t* keys;
+  Index* values;
+  GS_HD void operator()(Index k) const {
+    keys[k] = id[at[k]];
+    values[k] = at[k];
+  }
 };
 
 template <class Exec, class Real>
@@ -82,13 +87,9 @@ class ParticleMover final : public ParticleMovement {
   void owned_to_host(const ParticleStore& s, const RowOrder& order, ParticleSnapshot& into, HostPins& pins,
                      bool with_forces) const override;
   void history_to_host(const ParticleStore& s, const RowOrder& order, HostHistory& into, HostPins& pins) const override;
-  void wall_contact_history(const ParticleStore& s, const Index* order, ParticleRecords& into,
-                            HostPins& pins) const override;
+  void wall_contact_history(const ParticleStore& s, ParticleRecords& into, HostPins& pins) const override;
   RowOrder owned_row_order(const ParticleStore& s, DeviceArray<Index>& storage) const override {
     return gs::owned_row_order<Exec>(s.id.data(), s.n_owned, storage, st_.staging);
-  }
-  void owned_id_order(const ParticleStore& s, DeviceArray<Index>& order) const override {
-    gs::owned_id_order<Exec>(s.id.data(), s.n_owned, order, st_.staging);
   }
 
   void synchronize() const override { Exec::synchronize(); }

@@ -122,7 +122,7 @@ void ParticleMover<Exec, Real>::history_to_host(const ParticleStore& s, const Ro
 // Selected and gathered on the backend, so only the particles on a wall
 // cross to the host: the whole history is some 500 bytes per particle there.
 template <class Exec, class Real>
-void ParticleMover<Exec, Real>::wall_contact_history(const ParticleStore& s, const Index* order, ParticleRecords& into,
+void ParticleMover<Exec, Real>::wall_contact_history(const ParticleStore& s, ParticleRecords& into,
                                                      HostPins& pins) const {
   {  // only the ids and the history, their arrays kept
     std::vector<ParticleId> id = std::move(into.id);
@@ -134,20 +134,25 @@ void ParticleMover<Exec, Real>::wall_contact_history(const ParticleStore& s, con
   HostHistory& h = into.history;
   h.slots = st_.row_width;
   const bool any = st_.keeps_history() && s.n_owned > 0;
-  // Selected into the staging buffer (an index per owned particle); only
-  // the m selected store indices are kept apart, so the output holds 4
-  // bytes per particle on a wall beside the run, not 4 per particle.
+  // Selected in store order into the staging buffer (an index per owned
+  // particle), then the m selected put in id order by a sort of their own
+  // (id, index) pairs: the output holds no order of all the particles, and
+  // beside the run 4 bytes per particle and some 16 per particle on a wall.
   Index m = 0;
   DeviceArray<Index> which(Exec::backend);
   if (any) {
     DeviceArray<unsigned char>& selected = st_.staging;
     selected.resize_discarding(std::size_t(s.n_owned) * sizeof(Index));
-    DeviceArray<unsigned char> selection_storage(Exec::backend);
+    const Index* at = reinterpret_cast<const Index*>(selected.data());
+    DeviceArray<unsigned char> scratch(Exec::backend);
     const TouchesWall touches{st_.history.row.data(), st_.history.partner.data(), st_.history.strides, st_.history.slots};
-    m = Exec::select(s.n_owned, TouchesWallAt{touches, order}, reinterpret_cast<Index*>(selected.data()),
-                     selection_storage);
+    m = Exec::select(s.n_owned, touches, reinterpret_cast<Index*>(selected.data()), scratch);
     which.resize(std::size_t(m));
-    Exec::parallel_for(m, Gather<Index>{order, which.data(), reinterpret_cast<const Index*>(selected.data())});
+    static_assert(sizeof(ParticleId) == sizeof(std::uint32_t), "ids are the sort's 32-bit keys");
+    if (m > 0)
+      sort_in_scratch<Exec, std::uint32_t>(m, 32, which.data(), scratch, [&](SortPairs<std::uint32_t>& p) {
+        Exec::parallel_for(m, SelectedIdKeys{s.id.data(), at, p.keys, p.values});
+      });
   }
   const std::size_t width = std::size_t(std::max(0, h.slots));
   rows_to_host<Exec>(into.id, m, 1, pins, st_.staging, [&](Index first, Index k, ParticleId* to) {

@@ -415,19 +415,10 @@ ParticleSnapshot Simulation::snapshot() const {
   return s;
 }
 
-// Once the step's kernels are done: the owned particles' store indices in
-// ascending id order, made on the backend (engine/owned_id_order.hpp), which
-// every copy of fields in id order follows.
-DeviceArray<Index> Simulation::owned_id_order_on_backend() const {
-  kernels_->synchronize();
-  DeviceArray<Index> order(store_.backend);
-  kernels_->movement().owned_id_order(store_, order);
-  return order;
-}
-
-// The same as a RowOrder (engine/row_order.hpp): where the owned ids are
-// dense, a scatter by id that holds no order array beside the run; else the
-// order array, in `storage`.
+// Once the step's kernels are done: the owned particles' order by id, made
+// on the backend (engine/owned_id_order.hpp), which every copy of fields in
+// id order follows: where the owned ids are dense, a scatter by id that
+// holds no order array beside the run; else the order array, in `storage`.
 RowOrder Simulation::owned_row_order_on_backend(DeviceArray<Index>& storage) const {
   kernels_->synchronize();
   return kernels_->movement().owned_row_order(store_, storage);
@@ -470,8 +461,8 @@ ParticleRecords Simulation::wall_contact_history() const {
 }
 
 void Simulation::wall_contact_history_into(ParticleRecords& r, HostPins& pins) const {
-  const DeviceArray<Index> order = owned_id_order_on_backend();
-  kernels_->movement().wall_contact_history(store_, order.data(), r, pins);
+  kernels_->synchronize();
+  kernels_->movement().wall_contact_history(store_, r, pins);
 }
 
 HostHistory Simulation::history() const {

@@ -126,8 +126,7 @@ class Simulation {
   void insert_due();
   void append_inserted(const std::vector<ParticleInit>& inserted);
   void measure_contacts();  // the contact pass, now
-  DeviceArray<Index> owned_id_order_on_backend() const;  // (synchronises first)
-  RowOrder owned_row_order_on_backend(DeviceArray<Index>& storage) const;  // (the same)
+  RowOrder owned_row_order_on_backend(DeviceArray<Index>& storage) const;  // (synchronises first)
   void exchange_particles();
   void compute_forces(double dt, long long step);
   void finish_forward();  // the ghosts' forward, where one is in flight
