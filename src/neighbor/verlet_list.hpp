@@ -241,7 +241,11 @@ struct ListWatch {
 // is one lane's.
 template <bool Fill>
 struct ListPass {
-  static constexpr int kMinBlocksPerSM = 4;  // a launch hint, as the force kernel's
+  // A launch hint: 8 blocks of 128 threads a multiprocessor hold the passes
+  // to 64 registers (77 at 4 blocks). They wait on latency, not memory, so
+  // the twice as many resident warps pay: a loosening bed of 4e6 ran 2.3 %
+  // faster, the same bits (docs/PERFORMANCE.md, "Output without an order").
+  static constexpr int kMinBlocksPerSM = 8;
   CellCandidates cells;
   WithinSkin near;
   const ParticleId* id;  // Fill only
