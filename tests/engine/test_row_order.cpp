@@ -69,16 +69,17 @@ TEST(RowOrder, GatherAndStoreOrder) {
   EXPECT_EQ(source, (std::vector<Index>{2, 3}));
 }
 
-TEST(OutputChunk, AThirtySecondOfAFieldBetweenOneAndEightMiBUnlessTheStagingIsLarger) {
+TEST(OutputChunk, AThirtySecondOfAFieldBetweenOneAnd64MiBUnlessTheStagingIsLarger) {
   constexpr std::size_t kMiB = std::size_t(1) << 20, row = 24;  // an fp64 vector per particle
-  // 4e6 positions (96 MB): a 32nd, 3 MB.
+  // 4e6 positions (96 MB): a 32nd, 3 MB; 64e6 (1.5 GB): 48 MB.
   EXPECT_EQ(output_chunk_rows(4000000, row, 0), Index(3000000 / row));
-  // 64e6 (1.5 GB): 8 MiB at most ...
-  EXPECT_EQ(output_chunk_rows(64000000, row, 0), Index(8 * kMiB / row));
-  // ... unless the staging array is already larger (up to 64 MiB).
-  EXPECT_EQ(output_chunk_rows(64000000, row, 20 * kMiB), Index(20 * kMiB / row));
-  EXPECT_EQ(output_chunk_rows(64000000, row, 200 * kMiB), Index(64 * kMiB / row));
-  EXPECT_EQ(output_chunk_rows(4000000, row, 2 * kMiB), Index(3000000 / row));  // a smaller staging: the least
+  EXPECT_EQ(output_chunk_rows(64000000, row, 0), Index(48000000 / row));
+  // 4e8 (9.6 GB): 64 MiB at most.
+  EXPECT_EQ(output_chunk_rows(400000000, row, 0), Index(64 * kMiB / row));
+  // A staging array larger than the 32nd: as large as it, up to 64 MiB.
+  EXPECT_EQ(output_chunk_rows(4000000, row, 20 * kMiB), Index(20 * kMiB / row));
+  EXPECT_EQ(output_chunk_rows(4000000, row, 200 * kMiB), Index(64 * kMiB / row));
+  EXPECT_EQ(output_chunk_rows(4000000, row, 2 * kMiB), Index(3000000 / row));  // a smaller one: the 32nd
   // 1e6 (24 MB): 1 MiB at least; a small field whole.
   EXPECT_EQ(output_chunk_rows(1000000, row, 0), Index(kMiB / row));
   EXPECT_EQ(output_chunk_rows(7680, row, 0), Index(7680));
