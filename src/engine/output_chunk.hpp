@@ -2,15 +2,17 @@
 // How many rows of a field a GPU's output puts in order at a time
 // (ParticleMover's rows_to_host): each chunk is written into the staging
 // array, copied to a pinned bounce buffer and from there to the host array.
-// A 32nd of the field (at least 1 MiB, at most 64 MiB), or as much as the
-// staging array already holds where that is more (a build frees it; what
-// the exchange or the last output grew it to stays), up to 64 MiB. So the
-// output adds at most a 32nd of a field to what the run holds (a 4e6 bed's
-// positions, 96 MB, go in chunks of 3 MB: 0.75 bytes per particle), and a
-// field takes at most 32 chunks up to 2 GiB: each chunk's launch and wait,
-// and where the rows are found by a scatter over every particle
-// (engine/row_order.hpp) each chunk's pass over the ids, are paid at most
-// 32 times a field.
+// A 32nd of the field or a byte per row, whichever is less (at least 1 MiB,
+// at most 64 MiB), or as much as the staging array already holds where that
+// is more (a build frees it; what the exchange or the last output grew it
+// to stays), up to 64 MiB. So the output adds at most a byte per particle
+// to what the run holds (a 4e6 bed's positions, 96 MB, go in chunks of 3 MB,
+// 0.75 bytes per particle; a checkpoint's rows of contact history in chunks
+// of 4 MB). Where the rows are found by a scatter over every particle
+// (engine/row_order.hpp), each chunk is a pass over the ids: at most 32
+// passes a field for rows of up to 32 bytes (an fp64 vector: 24), and for
+// wider rows 4 bytes of ids read per byte copied, in device memory, which
+// is some hundred times faster than the copies to the host.
 #include <algorithm>
 #include <cstddef>
 
@@ -20,8 +22,9 @@ namespace gs {
 
 inline Index output_chunk_rows(Index n, std::size_t row_bytes, std::size_t staging_bytes) {
   constexpr std::size_t kMiB = std::size_t(1) << 20;
-  const std::size_t field_bytes = std::size_t(std::max<Index>(n, 0)) * row_bytes;
-  const std::size_t least = std::clamp(field_bytes / 32, kMiB, 64 * kMiB);
+  const std::size_t rows = std::size_t(std::max<Index>(n, 0));
+  const std::size_t field_bytes = rows * row_bytes;
+  const std::size_t least = std::clamp(std::min(field_bytes / 32, rows), kMiB, 64 * kMiB);
   const std::size_t most = std::clamp(staging_bytes, least, 64 * kMiB);
   return Index(std::max<std::size_t>(1, std::min<std::size_t>(std::size_t(n), most / std::max<std::size_t>(row_bytes, 1))));
 }

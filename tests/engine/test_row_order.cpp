@@ -69,14 +69,16 @@ TEST(RowOrder, GatherAndStoreOrder) {
   EXPECT_EQ(source, (std::vector<Index>{2, 3}));
 }
 
-TEST(OutputChunk, AThirtySecondOfAFieldBetweenOneAnd64MiBUnlessTheStagingIsLarger) {
+TEST(OutputChunk, AThirtySecondOfAFieldOrAByteARowUnlessTheStagingIsLarger) {
   constexpr std::size_t kMiB = std::size_t(1) << 20, row = 24;  // an fp64 vector per particle
   // 4e6 positions (96 MB): a 32nd, 3 MB; 64e6 (1.5 GB): 48 MB.
   EXPECT_EQ(output_chunk_rows(4000000, row, 0), Index(3000000 / row));
   EXPECT_EQ(output_chunk_rows(64000000, row, 0), Index(48000000 / row));
   // 4e8 (9.6 GB): 64 MiB at most.
   EXPECT_EQ(output_chunk_rows(400000000, row, 0), Index(64 * kMiB / row));
-  // A staging array larger than the 32nd: as large as it, up to 64 MiB.
+  // Rows of contact history (12 slots of fp64 vectors): a byte a row, 4 MB at 4e6.
+  EXPECT_EQ(output_chunk_rows(4000000, 12 * row, 0), Index(4000000 / (12 * row)));
+  // A staging array larger than that: as large as it, up to 64 MiB.
   EXPECT_EQ(output_chunk_rows(4000000, row, 20 * kMiB), Index(20 * kMiB / row));
   EXPECT_EQ(output_chunk_rows(4000000, row, 200 * kMiB), Index(64 * kMiB / row));
   EXPECT_EQ(output_chunk_rows(4000000, row, 2 * kMiB), Index(3000000 / row));  // a smaller one: the 32nd
