@@ -144,11 +144,18 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   };
   const double key = m.cells <= (std::int64_t(1) << 32) ? sizeof(std::uint32_t) : sizeof(std::uint64_t);
   m.build_bytes = build_peak(2 * key + sizeof(Index), 0);
-  m.bytes_per_particle = m.field_bytes + m.force_bytes + m.history_bytes + m.list_bytes + m.build_bytes;
+  const bool ids_stay_dense = !scene.has_exits();
+  m.output_bytes = ids_stay_dense ? sizeof(Vec3d) / 32.0 : sizeof(Index) + 3 * sizeof(std::uint32_t);
+  m.bytes_per_particle = m.field_bytes + m.force_bytes + m.history_bytes + m.list_bytes + m.transient_bytes();
   // The CPU's per entry: a reverse entry (freed at a rebuild), a load and a touching flag.
   const double cpu_held = sizeof(ListOffset) + 6 * real + sizeof(std::uint8_t);
+  // Its output writes the host's arrays directly (no chunks), with an order
+  // array where the ids need not be dense (the order itself made on the host).
+  const double cpu_output = ids_stay_dense ? 0 : sizeof(Index);
   m.cpu_extra_bytes =
-      cpu_held * entries + build_peak(2.0 * sizeof(std::uint64_t) + sizeof(Index), sizeof(ListOffset)) - m.build_bytes;
+      cpu_held * entries +
+      std::max(build_peak(2.0 * sizeof(std::uint64_t) + sizeof(Index), sizeof(ListOffset)), cpu_output) -
+      m.transient_bytes();
   const MeshSet& meshes = scene.meshes;
   if (r > 0 && meshes.n_meshes() > 0) {
     const double skin = 2 * r * scene.verlet_skin;

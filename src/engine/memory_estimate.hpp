@@ -28,6 +28,15 @@ struct MemoryEstimate {
   // between rebuilds, per particle: the largest of its phases
   // (engine/neighbour_finder.hpp), with history the kept contacts'.
   double build_bytes = 0;
+  // What an output (snapshot or checkpoint) holds beside the run, per
+  // particle (engine/particle_mover_output.hpp): where the ids stay dense
+  // (a scene whose particles cannot leave, on one rank) a GPU's chunk, a
+  // 32nd of an fp64 vector field (0.75); where they need not, the order by
+  // id and its sort's keys and second buffers (4 + 12; the chunks then fit
+  // in the sort's staging buffer).
+  double output_bytes = 0;
+  // A build and an output never overlap: the larger of the two.
+  double transient_bytes() const { return std::max(build_bytes, output_bytes); }
   double cell_bytes = 0;          // the cells' offsets, while a rebuild holds the cell list
   // The CPU's alone, not in bytes_per_particle, per particle: computing each
   // pair once keeps per list entry the partner's reverse entry, a load
@@ -46,9 +55,10 @@ struct MemoryEstimate {
 // What a run of this scene holds in device memory at its peak, by the layout
 // of ParticleStore, the force arrays, the contact history and the Verlet
 // list (estimated_list_entries per particle, at most twelve touching)
-// between rebuilds, plus the largest phase of a rebuild: the cell list with
-// the sort's buffers (in the staging buffer) or the new list's entries, and
-// with history the pair history's kept contacts (engine/pair_keep.hpp); and
+// between rebuilds, plus the largest phase of a rebuild (the cell list with
+// the sort's buffers, in the staging buffer, or the new list's entries, and
+// with history the pair history's kept contacts: engine/pair_keep.hpp) or
+// of an output, whichever is larger, on one rank; and
 // the meshes with their binning, at the smallest cells a run uses (one
 // largest diameter: the most cells). docs/PERFORMANCE.md ("Bytes per
 // particle") lists the same parts.

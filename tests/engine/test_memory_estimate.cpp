@@ -74,8 +74,21 @@ TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   EXPECT_EQ(none.force_bytes, 12);  // no torque without friction
   EXPECT_EQ(none.field_bytes, 90 - 24);  // nor a spin
   EXPECT_EQ(none.build_bytes, 0);
-  EXPECT_EQ(none.bytes_per_particle, 66 + 12 + 64);
-  EXPECT_EQ(none.cpu_extra_bytes, 12 * kCpuPairEntry);
+  EXPECT_EQ(none.output_bytes, 24.0 / 32);  // an output's chunk: a 32nd of the positions
+  EXPECT_EQ(none.bytes_per_particle, 66 + 12 + 64 + 24.0 / 32);
+  EXPECT_EQ(none.cpu_extra_bytes, 12 * kCpuPairEntry - 24.0 / 32);
+  SceneSpec leaving = lattice_scene(2, 0);
+  leaving.open_faces = 1u;  // particles leave through the domain's lower x face: the ids need not stay dense
+  const MemoryEstimate open = estimate_memory(leaving);
+  EXPECT_EQ(open.output_bytes, 4 + 12);  // the order by id and its sort's buffers
+  EXPECT_EQ(open.bytes_per_particle, 66 + 12 + 64 + 16);
+  EXPECT_EQ(open.cpu_extra_bytes, 12 * kCpuPairEntry + 4 - 16);
+  EXPECT_EQ(estimate_memory([] {
+              SceneSpec s = lattice_scene(2, kFriction);
+              s.open_faces = 1u;
+              return s;
+            }()).bytes_per_particle,
+            m.bytes_per_particle);  // with history a build's phase is the larger
   SceneSpec spinning = lattice_scene(2, 0);
   spinning.particles.front().angular_velocity = {0, 0, 1};
   EXPECT_EQ(estimate_memory(spinning).field_bytes, 90);  // a sphere that starts spinning keeps its spin
@@ -153,7 +166,7 @@ TEST(MemoryEstimate, MatchesTheRunsPeakOnTheCpu) {
       }
       const double missing = kEstimatedListEntries - entries, pair_entry = effects != 0 ? 1 + 12 : 0;
       EXPECT_EQ(got.contacts_per_particle, 0);  // so the kept contacts take no room
-      const double held = m.bytes_per_particle - m.build_bytes - missing * (4 + pair_entry) + entries * kCpuPairEntry;
+      const double held = m.bytes_per_particle - m.transient_bytes() - missing * (4 + pair_entry) + entries * kCpuPairEntry;
       // Within the cell offsets (the estimate's cells, one diameter, are more
       // than the run's) and a byte per particle: the fault flag, the pair
       // table, alignment.
@@ -191,7 +204,7 @@ TEST(MemoryEstimate, RebuildHoldsTheTouchingContactsOnly) {
   EXPECT_GE(got.builds, 3);
   ASSERT_EQ(got.contacts_per_particle, 6);
   const double entries = 6, contacts = 6, missing = kEstimatedListEntries - entries;
-  const double held = m.bytes_per_particle - m.build_bytes - missing * (4 + 1 + 12) + entries * kCpuPairEntry;
+  const double held = m.bytes_per_particle - m.transient_bytes() - missing * (4 + 1 + 12) + entries * kCpuPairEntry;
   const double keeping = contacts * (4 + 12) + 4 - 12;
   EXPECT_GE(got.bytes_per_particle, held + keeping);
   EXPECT_LT(got.bytes_per_particle, held + keeping + m.cell_bytes / double(scene.particles.size()) + 1)
