@@ -144,8 +144,13 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   };
   const double key = m.cells <= (std::int64_t(1) << 32) ? sizeof(std::uint32_t) : sizeof(std::uint64_t);
   m.build_bytes = build_peak(2 * key + sizeof(Index), 0);
+  // An output's chunk (engine/output_chunk.hpp) per particle: the
+  // positions' (with history a build's phase outweighs any chunk), a 32nd
+  // of them but at least 1 MiB, and no more than the whole field.
   const bool ids_stay_dense = !scene.has_exits();
-  m.output_bytes = ids_stay_dense ? sizeof(Vec3d) / 32.0 : sizeof(Index) + 3 * sizeof(std::uint32_t);
+  const double n = double(particle_count(scene)), vector = sizeof(Vec3d);
+  const double chunk = n > 0 ? std::min(vector, std::max(vector / 32, double(1 << 20) / n)) : 0;
+  m.output_bytes = ids_stay_dense ? chunk : sizeof(Index) + 3 * sizeof(std::uint32_t);
   m.bytes_per_particle = m.field_bytes + m.force_bytes + m.history_bytes + m.list_bytes + m.transient_bytes();
   // The CPU's per entry: a reverse entry (freed at a rebuild), a load and a touching flag.
   const double cpu_held = sizeof(ListOffset) + 6 * real + sizeof(std::uint8_t);

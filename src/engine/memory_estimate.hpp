@@ -31,9 +31,9 @@ struct MemoryEstimate {
   // What an output (snapshot or checkpoint) holds beside the run, per
   // particle (engine/particle_mover_output.hpp): where the ids stay dense
   // (a scene whose particles cannot leave, on one rank) a GPU's chunk, a
-  // 32nd of an fp64 vector field (0.75); where they need not, the order by
-  // id and its sort's keys and second buffers (4 + 12; the chunks then fit
-  // in the sort's staging buffer).
+  // 32nd of an fp64 vector field (0.75; at least 1 MiB in all); where they
+  // need not, the order by id and its sort's keys and second buffers (4 +
+  // 12; the chunks then fit in the sort's staging buffer).
   double output_bytes = 0;
   // A build and an output never overlap: the larger of the two.
   double transient_bytes() const { return std::max(build_bytes, output_bytes); }

@@ -74,9 +74,11 @@ TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   EXPECT_EQ(none.force_bytes, 12);  // no torque without friction
   EXPECT_EQ(none.field_bytes, 90 - 24);  // nor a spin
   EXPECT_EQ(none.build_bytes, 0);
-  EXPECT_EQ(none.output_bytes, 24.0 / 32);  // an output's chunk: a 32nd of the positions
-  EXPECT_EQ(none.bytes_per_particle, 66 + 12 + 64 + 24.0 / 32);
-  EXPECT_EQ(none.cpu_extra_bytes, 12 * kCpuPairEntry - 24.0 / 32);
+  EXPECT_EQ(none.output_bytes, 24);  // an output's chunk: the positions whole, 8 spheres (under 1 MiB)
+  EXPECT_EQ(none.bytes_per_particle, 66 + 12 + 64 + 24);
+  EXPECT_EQ(none.cpu_extra_bytes, 12 * kCpuPairEntry - 24);
+  EXPECT_EQ(estimate_memory(lattice_scene(128, 0)).output_bytes, 24.0 / 32);  // 2e6 spheres: a 32nd of the positions
+  EXPECT_EQ(estimate_memory(lattice_scene(64, 0)).output_bytes, double(1 << 20) / (64 * 64 * 64));  // 1 MiB
   SceneSpec leaving = lattice_scene(2, 0);
   leaving.open_faces = 1u;  // particles leave through the domain's lower x face: the ids need not stay dense
   const MemoryEstimate open = estimate_memory(leaving);
