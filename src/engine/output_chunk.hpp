@@ -26,7 +26,7 @@ inline Index output_chunk_rows(Index n, std::size_t row_bytes, std::size_t stagi
   const std::size_t field_bytes = rows * row_bytes;
   const std::size_t least = std::clamp(std::min(field_bytes / 32, rows), kMiB, 64 * kMiB);
   const std::size_t most = std::clamp(staging_bytes, least, 64 * kMiB);
-  return Index(std::max<std::size_t>(1, std::min<std::size_t>(std::size_t(n), most / std::max<std::size_t>(row_bytes, 1))));
+  return Index(std::max<std::size_t>(1, std::min(rows, most / std::max<std::size_t>(row_bytes, 1))));
 }
 
 }  // namespace gs

@@ -19,16 +19,30 @@
 
 namespace gs {
 
-// keys[k] = id[k], values[k] = k.
+// keys[k] = id[i], values[k] = i for store index i = at[k] (at null: k).
 struct IdKeys {
   const ParticleId* id;
+  const Index* at;
   std::uint32_t* keys;
   Index* values;
   GS_HD void operator()(Index k) const {
-    keys[k] = id[k];
-    values[k] = k;
+    const Index i = at ? at[k] : k;
+    keys[k] = id[i];
+    values[k] = i;
   }
 };
+
+// Store indices at[0, m) (at null: 0 to m - 1) into `out` by ascending id:
+// a radix sort of their (id, index) pairs on the backend, its keys and
+// second buffers in `scratch`.
+template <class Exec>
+void sort_by_id(const ParticleId* id, const Index* at, Index m, Index* out, DeviceArray<unsigned char>& scratch) {
+  static_assert(sizeof(ParticleId) == sizeof(std::uint32_t), "ids are the sort's 32-bit keys");
+  if (m == 0) return;
+  sort_in_scratch<Exec, std::uint32_t>(m, 32, out, scratch, [&](SortPairs<std::uint32_t>& p) {
+    Exec::parallel_for(m, IdKeys{id, at, p.keys, p.values});
+  });
+}
 
 // The owned order as a RowOrder: the scatter by id where the ids are dense,
 // else a gather over `storage` (an empty array, filled here; left empty
@@ -46,10 +60,7 @@ RowOrder owned_row_order(const ParticleId* id, Index n, DeviceArray<Index>& stor
     Index* to = storage.data();
     for (Index k = 0; k < n; ++k) to[k] = Index(o[std::size_t(k)]);
   } else {
-    static_assert(sizeof(ParticleId) == sizeof(std::uint32_t), "ids are the sort's 32-bit keys");
-    sort_in_scratch<Exec, std::uint32_t>(n, 32, storage.data(), scratch, [&](SortPairs<std::uint32_t>& p) {
-      Exec::parallel_for(n, IdKeys{id, p.keys, p.values});
-    });
+    sort_by_id<Exec>(id, nullptr, n, storage.data(), scratch);
   }
   return RowOrder::gather(storage.data());
 }

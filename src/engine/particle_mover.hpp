@@ -34,18 +34,6 @@ struct TouchesWall {
   }
 };
 
-// keys[k] = the id of selected particle at[k], values[k] = at[k].
-struct SelectedIdKeys {
-  const ParticleId* id;
-  const Index* at;
-  std::uint32_t* keys;
-  Index* values;
-  GS_HD void operator()(Index k) const {
-    keys[k] = id[at[k]];
-    values[k] = at[k];
-  }
-};
-
 template <class Exec, class Real>
 class ParticleMover final : public ParticleMovement {
  public:

@@ -141,18 +141,13 @@ void ParticleMover<Exec, Real>::wall_contact_history(const ParticleStore& s, Par
   Index m = 0;
   DeviceArray<Index> which(Exec::backend);
   if (any) {
-    DeviceArray<unsigned char>& selected = st_.staging;
-    selected.resize_discarding(std::size_t(s.n_owned) * sizeof(Index));
-    const Index* at = reinterpret_cast<const Index*>(selected.data());
+    st_.staging.resize_discarding(std::size_t(s.n_owned) * sizeof(Index));
+    Index* selected = reinterpret_cast<Index*>(st_.staging.data());
     DeviceArray<unsigned char> scratch(Exec::backend);
     const TouchesWall touches{st_.history.row.data(), st_.history.partner.data(), st_.history.strides, st_.history.slots};
-    m = Exec::select(s.n_owned, touches, reinterpret_cast<Index*>(selected.data()), scratch);
+    m = Exec::select(s.n_owned, touches, selected, scratch);
     which.resize(std::size_t(m));
-    static_assert(sizeof(ParticleId) == sizeof(std::uint32_t), "ids are the sort's 32-bit keys");
-    if (m > 0)
-      sort_in_scratch<Exec, std::uint32_t>(m, 32, which.data(), scratch, [&](SortPairs<std::uint32_t>& p) {
-        Exec::parallel_for(m, SelectedIdKeys{s.id.data(), at, p.keys, p.values});
-      });
+    sort_by_id<Exec>(s.id.data(), selected, m, which.data(), scratch);
   }
   const std::size_t width = std::size_t(std::max(0, h.slots));
   rows_to_host<Exec>(into.id, m, 1, pins, st_.staging, [&](Index first, Index k, ParticleId* to) {
