@@ -8,9 +8,10 @@
 // thread that first writes them, was most of a first output's time). They
 // stay pageable: page-locking whole arrays (cudaHostRegister) took longer
 // than the copies it sped up, and locked as much host memory as a snapshot
-// holds (62 GB for 4e8 spheres). The device instead writes a fixed-size
-// pinned bounce buffer, a chunk at a time, and host_copy moves each chunk
-// to its place on every host thread (engine/particle_mover_output.hpp).
+// holds (62 GB for 4e8 spheres). The device instead copies a chunk at a time
+// into one half of a fixed-size pinned bounce buffer while host_copy moves
+// the chunk before it out of the other half to its place, on every host
+// thread (engine/particle_mover_output.hpp).
 #include <cstddef>
 #include <type_traits>
 #include <vector>
@@ -38,7 +39,7 @@ class HostPins {
   // pin false: no bounce buffer (a copy made once gains nothing from
   // pinning, which costs more than the copy it speeds up).
   explicit HostPins(bool pin = true) : pin_(pin) {}
-  ~HostPins() { clear(); }
+  ~HostPins();
   HostPins(const HostPins&) = delete;
   HostPins& operator=(const HostPins&) = delete;
 
@@ -54,20 +55,32 @@ class HostPins {
     }
     v.resize(n);
   }
-  // A page-locked host buffer of at least `bytes` for backend b's copies,
-  // kept from call to call; null where there is none: on the CPU backend,
-  // with pin false, or where the range cannot be pinned (the caller then
-  // copies straight into its pageable array, as the driver stages it).
-  unsigned char* bounce(Backend b, std::size_t bytes);
-  // Unpins the bounce buffer and lets it go.
+  // The bounce buffer as two halves of at least `half_bytes` each, page-locked
+  // and kept from call to call, for a pipeline of copies from backend b's
+  // memory: while the host reads one half, the device fills the other. False
+  // where there is none: on the CPU backend, with pin false, or where the
+  // range cannot be pinned (the caller then copies straight into its pageable
+  // array, as the driver stages it).
+  bool hold_halves(Backend b, std::size_t half_bytes);
+  // Queues a copy of `bytes` (at most a half) of the backend's memory at
+  // `src` into half h (0 or 1), behind the kernels already launched.
+  void fill_half(int h, const void* src, std::size_t bytes);
+  // Half h, once the copy last queued into it is done.
+  const unsigned char* filled_half(int h);
+  // Waits for the queued copies, unpins the bounce buffer and lets it go.
   void clear() noexcept;
   std::size_t pinned_bytes() const { return bounce_pinned_ ? bounce_.size() : 0; }  // for the tests
 
  private:
+  void wait_half(int h);
+
   bool pin_ = true;
   std::vector<unsigned char> bounce_;
+  std::size_t half_bytes_ = 0;
   Backend bounce_backend_ = Backend::cpu;
   bool bounce_pinned_ = false;
+  void* filled_[2] = {};      // per half, the event of the copy last queued into it (cudaEvent_t)
+  bool fill_queued_[2] = {};  // whether that copy may still be running
 };
 
 }  // namespace gs

@@ -1,7 +1,9 @@
 #pragma once
 // How many rows of a field a GPU's output puts in order at a time
-// (ParticleMover's rows_to_host): each chunk is written into the staging
-// array, copied to a pinned bounce buffer and from there to the host array.
+// (ParticleMover's rows_to_host, which splits this in two halves: one is
+// copied to the host while the other is filled): each chunk is written into
+// the staging array, copied to a pinned bounce buffer and from there to the
+// host array.
 // A 32nd of the field or a byte per row, whichever is less (at least 1 MiB,
 // at most 64 MiB), or as much as the staging array already holds where that
 // is more (a build frees it; what the exchange or the last output grew it

@@ -19,11 +19,13 @@ struct RowAs {
 
 // Host array `out` of n rows of `width` values, written by rows(first, m,
 // to): a kernel that writes rows [first, first + m) at `to`. On the CPU the
-// kernel writes `out` itself; on a GPU it writes the staging array a chunk of
-// rows at a time, each chunk copied to the pinned bounce buffer and from
-// there, on every host thread, to its place in `out` (pageable: no array
-// pinned whole, backend/host_pins.hpp); without a bounce buffer (a copy
-// made once) straight to its place.
+// kernel writes `out` itself. On a GPU the rows go a chunk at a time through
+// the staging array's two halves and the pinned bounce buffer's
+// (backend/host_pins.hpp): chunk c is put in order in staging half c % 2 and
+// copied to bounce half c % 2, both queued, while the host moves chunk c - 1
+// from the other bounce half to its place in `out` (pageable: no array pinned
+// whole) on every host thread. Without a bounce buffer (a copy made once)
+// each chunk goes straight to its place.
 template <class Exec, class U, class Rows>
 void rows_to_host(std::vector<U>& out, Index n, std::size_t width, HostPins& pins, DeviceArray<unsigned char>& staging,
                   const Rows& rows) {
@@ -32,19 +34,31 @@ void rows_to_host(std::vector<U>& out, Index n, std::size_t width, HostPins& pin
   if constexpr (Exec::backend == Backend::cpu) {
     rows(0, n, out.data());
   } else {
-    const Index chunk = output_chunk_rows(n, width * sizeof(U), staging.bytes());
-    const std::size_t row_bytes = width * sizeof(U), chunk_bytes = std::size_t(chunk) * row_bytes;
-    staging.resize_discarding(chunk_bytes);
-    U* to = reinterpret_cast<U*>(staging.data());
-    unsigned char* bounce = pins.bounce(Exec::backend, chunk_bytes);  // null: straight to `out`
-    for (Index first = 0; first < n; first += chunk) {
-      const Index m = std::min(chunk, n - first);
-      const std::size_t bytes = std::size_t(m) * row_bytes;
-      U* place = out.data() + std::size_t(first) * width;
-      rows(first, m, to);
-      backend_copy_to_host(Exec::backend, bounce ? static_cast<void*>(bounce) : place, to, bytes);
-      if (bounce) host_copy(place, bounce, bytes);
+    const std::size_t row_bytes = width * sizeof(U);
+    // Two halves of the chunk the rule allows: the output holds no more.
+    const Index chunk = std::max<Index>(1, output_chunk_rows(n, row_bytes, staging.bytes()) / 2);
+    const std::size_t chunk_bytes = std::size_t(chunk) * row_bytes;
+    staging.resize_discarding(2 * chunk_bytes);
+    auto staged = [&](int h) { return reinterpret_cast<U*>(staging.data() + std::size_t(h) * chunk_bytes); };
+    auto place = [&](Index first) { return out.data() + std::size_t(first) * width; };
+    if (!pins.hold_halves(Exec::backend, chunk_bytes)) {
+      for (Index first = 0; first < n; first += chunk) {
+        const Index m = std::min(chunk, n - first);
+        rows(first, m, staged(0));
+        backend_copy_to_host(Exec::backend, place(first), staged(0), std::size_t(m) * row_bytes);
+      }
+      return;
     }
+    auto bytes_from = [&](Index first) { return std::size_t(std::min(chunk, n - first)) * row_bytes; };
+    Index last = -1;  // the chunk queued before (its first row), not yet in its place
+    int h = 0;
+    for (Index first = 0; first < n; first += chunk, h = 1 - h) {
+      rows(first, std::min(chunk, n - first), staged(h));
+      pins.fill_half(h, staged(h), bytes_from(first));
+      if (last >= 0) host_copy(place(last), pins.filled_half(1 - h), bytes_from(last));
+      last = first;
+    }
+    host_copy(place(last), pins.filled_half(1 - h), bytes_from(last));  // h moved past the last one
   }
 }
 
