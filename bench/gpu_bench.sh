@@ -28,12 +28,22 @@
 # BACKEND=cpu runs it all on the CPU instead (a dry run of the script);
 # SKIP="random mixer_b ..." leaves those benchmarks out; RANDOM_BED_N sets the
 # random bed's size (default 2e6); ROUNDS the rounds per benchmark (default 1).
+# BEFORE_SRC (a source tree, e.g. git archive <commit> unpacked): the before
+# build's own mixer scenes, and each build settles the random bed and mixer
+# case b to a checkpoint of its own and is timed from it (an older commit
+# reads neither today's checkpoints nor, perhaps, its scenes); without it
+# both builds restart from AFTER_BUILD's checkpoints and read this tree's scenes.
 set -uo pipefail
 backend=${BACKEND:-cuda}
 skip=" ${SKIP:-} "
 wanted() { [[ $skip != *" $1 "* ]]; }
 before=$1 after=$2 out=$3 budget=${4:-300} sizes=${5:-"4000000 16000000 64000000"}
 root=$(pwd)
+before_src=${BEFORE_SRC:+$(cd "$BEFORE_SRC" && pwd)}
+# The mixer scenes a build reads: its own tree's where BEFORE_SRC is given.
+mixer_dir() { [[ -n $before_src && $1 == "$before" ]] && echo "$before_src/cases/mixer" || echo "$root/cases/mixer"; }
+# The builds that settle a bed to a checkpoint: each where BEFORE_SRC is given, else AFTER_BUILD alone.
+settlers() { [[ -n $before_src ]] && echo "$before $after" || echo "$after"; }
 mkdir -p "$out"
 out=$(cd "$out" && pwd)  # the runs log there from their scenes' directories
 deadline=$((SECONDS + budget))
@@ -132,14 +142,14 @@ dense_runs() {
 read -r -a size_list <<< "$sizes"
 dense_runs "${size_list[@]:0:${#size_list[@]}-1}"
 
-# settle_to_checkpoint DIR SCENE RUN LOG LIMIT_S: runs SCENE (from DIR) with
-# AFTER_BUILD until its first checkpoint is written (at most LIMIT_S), then stops it (SIGTERM;
+# settle_to_checkpoint BUILD DIR SCENE RUN LOG LIMIT_S: runs SCENE (from DIR) with
+# BUILD until its first checkpoint is written (at most LIMIT_S), then stops it (SIGTERM;
 # the run writes one more); prints that first checkpoint. A restart must read
 # the same scene file (its hash), so the scene runs on past the checkpoint.
 settle_to_checkpoint() {
-  local dir=$1 scene=$2 run=$3 log=$4 limit=$5 pid stop
+  local build=$1 dir=$2 scene=$3 run=$4 log=$5 limit=$6 pid stop
   rm -rf "$run"
-  (cd "$dir" && exec "$root/$after/src/grainstorm" run "$scene" --backend "$backend" --out "$run" --overwrite) \
+  (cd "$dir" && exec "$root/$build/src/grainstorm" run "$scene" --backend "$backend" --out "$run" --overwrite) \
     > "$log" 2>&1 &
   pid=$! stop=$((SECONDS + limit))
   while kill -0 "$pid" 2> /dev/null && ((SECONDS < stop)); do
@@ -185,54 +195,60 @@ duration: 10
 output: {interval: 0, fields: [id], checkpoint_interval: 0.3}
 YAML
 if wanted random && (($(left) > 120)); then
-  checkpoint=$(settle_to_checkpoint "$root" "$scenes/random.yaml" /tmp/gpu_bench_random "$out/random_settle.log" \
-    $(($(left) > 150 ? 90 : $(left) - 60)))
-  grep -E "particles,|set up|stopped|peak" "$out/random_settle.log"
-  if [[ -n $checkpoint ]]; then
+  for settler in $(settlers); do
+    tag=$(basename "$settler")
+    checkpoint=$(settle_to_checkpoint "$settler" "$root" "$scenes/random.yaml" /tmp/gpu_bench_random_$tag \
+      "$out/random_settle_$tag.log" $(($(left) > 150 ? 90 : $(left) - 60)))
+    grep -E "particles,|set up|stopped|peak" "$out/random_settle_$tag.log"
+    if [[ -z $checkpoint ]]; then echo "random bed: no checkpoint (see random_settle_$tag.log)"; continue; fi
+    timed=$(settlers | grep -q " " && echo "$settler" || echo "$before $after")  # each from its own, or both from one
     for round in $rounds; do
-      for b in "$before" "$after"; do
+      for b in $timed; do
         run_case random "$b" $round "$root" "$scenes/random.yaml" $(($(step_of "$checkpoint") + 300)) \
           --restart "$checkpoint"
       done
     done
-  else
-    echo "random bed: no checkpoint (see random_settle.log)"
-  fi
+  done
 else
   echo "skipped random bed: out of time" | tee -a "$out/skipped.txt"
 fi
 
 # Mixer case b, soft: settled to t = 1 s (the impeller starts then) to a
 # checkpoint, then 5000 steps (0.18 s, a tenth of a turn) timed turning.
-sed -e 's/checkpoint_minutes: 30/checkpoint_interval: 1/' \
-  -e 's/fields: \[id, material, marker, radius, position, velocity\]/fields: [id]/' \
-  cases/mixer/case_b_soft.yaml > cases/mixer/.gpu_bench_b.yaml
+for b in "$before" "$after"; do
+  sed -e 's/checkpoint_minutes: 30/checkpoint_interval: 1/' \
+    -e 's/fields: \[id, material, marker, radius, position, velocity\]/fields: [id]/' \
+    "$(mixer_dir "$b")/case_b_soft.yaml" > "$(mixer_dir "$b")/.gpu_bench_b.yaml"
+done
 if wanted mixer_b && (($(left) > 90)); then
-  checkpoint=$(settle_to_checkpoint cases/mixer .gpu_bench_b.yaml /tmp/gpu_bench_b "$out/mixer_b_settle.log" \
-    $(($(left) > 120 ? 60 : $(left) - 60)))
-  grep -E "particles,|stopped|peak" "$out/mixer_b_settle.log"
-  if [[ -n $checkpoint ]]; then
+  for settler in $(settlers); do
+    tag=$(basename "$settler")
+    checkpoint=$(settle_to_checkpoint "$settler" "$(mixer_dir "$settler")" .gpu_bench_b.yaml /tmp/gpu_bench_b_$tag \
+      "$out/mixer_b_settle_$tag.log" $(($(left) > 120 ? 60 : $(left) - 60)))
+    grep -E "particles,|stopped|peak" "$out/mixer_b_settle_$tag.log"
+    if [[ -z $checkpoint ]]; then echo "mixer b: no checkpoint (see mixer_b_settle_$tag.log)"; continue; fi
+    timed=$(settlers | grep -q " " && echo "$settler" || echo "$before $after")
     for round in $rounds; do
-      for b in "$before" "$after"; do
-        run_case mixer_b "$b" $round cases/mixer .gpu_bench_b.yaml $(($(step_of "$checkpoint") + 5000)) \
+      for b in $timed; do
+        run_case mixer_b "$b" $round "$(mixer_dir "$b")" .gpu_bench_b.yaml $(($(step_of "$checkpoint") + 5000)) \
           --restart "$checkpoint"
       done
     done
-  else
-    echo "mixer b: no checkpoint (see mixer_b_settle.log)"
-  fi
+  done
 else
   echo "skipped mixer b: out of time" | tee -a "$out/skipped.txt"
 fi
 
 # Mixer case a from its start: the small scene (7,680 spheres).
-sed -e 's/fields: \[id, material, marker, radius, position, velocity\]/fields: [id]/' \
-  cases/mixer/case_a.yaml > cases/mixer/.gpu_bench_a.yaml
+for b in "$before" "$after"; do
+  sed -e 's/fields: \[id, material, marker, radius, position, velocity\]/fields: [id]/' \
+    "$(mixer_dir "$b")/case_a.yaml" > "$(mixer_dir "$b")/.gpu_bench_a.yaml"
+done
 for round in $rounds; do
   wanted mixer_a || break
-  for b in "$before" "$after"; do run_case mixer_a "$b" $round cases/mixer .gpu_bench_a.yaml 20000; done
+  for b in "$before" "$after"; do run_case mixer_a "$b" $round "$(mixer_dir "$b")" .gpu_bench_a.yaml 20000; done
 done
-rm -f cases/mixer/.gpu_bench_a.yaml cases/mixer/.gpu_bench_b.yaml
+for b in "$before" "$after"; do rm -f "$(mixer_dir "$b")"/.gpu_bench_a.yaml "$(mixer_dir "$b")"/.gpu_bench_b.yaml; done
 
 # The dense bed on 2 ranks sharing the GPU (each rank finds its contacts anew every step).
 n2=${sizes%% *}
