@@ -99,8 +99,9 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
                       1.25 * m.surface_row_share * (sizeof(ParticleId) + springs + largest) * scene.surface_slots;
     // Each particle's touching contacts (a partner id and the springs; at
     // most twelve touch in a close-packed bed), kept at a rebuild for the
-    // new list (engine/pair_keep.hpp).
-    kept = (sizeof(ParticleId) + springs) * kEstimatedListEntries;
+    // new list, on one rank each pair's by one side (halved rows:
+    // engine/pair_keep.hpp).
+    kept = (sizeof(ParticleId) + springs) * kEstimatedListEntries / 2;
   }
   // The Verlet list between rebuilds: offsets, fp32 reference positions,
   // entries (neighbor/verlet_list.hpp).

@@ -57,7 +57,8 @@ struct MemoryEstimate {
 // list (estimated_list_entries per particle, at most twelve touching)
 // between rebuilds, plus the largest phase of a rebuild (the cell list with
 // the sort's buffers, in the staging buffer, or the new list's entries, and
-// with history the pair history's kept contacts: engine/pair_keep.hpp) or
+// with history the pair history's kept contacts, each pair's by one side:
+// engine/pair_keep.hpp) or
 // of an output, whichever is larger, on one rank; and
 // the meshes with their binning, at the smallest cells a run uses (one
 // largest diameter: the most cells). docs/PERFORMANCE.md ("Bytes per

@@ -16,12 +16,25 @@
 // and flag 0 (PairSprings::release), which is what an entry left out of the
 // kept table starts from; a pending row's contacts are taken in ascending
 // partner id, so each is found by the same merge.
+//
+// Halved rows: where every partner of the new list is an owned particle (the
+// store holds no ghosts: one rank, no periodic axis), a pair's two rows hold
+// the same contact, its springs the exact negation of each other's (contact/
+// pair_springs.hpp: what the CPU's pairs-once path already stores). Then
+// only the side of lower id keeps it, and the other side's new entry takes it
+// mirrored from the partner's row: half the kept table (16 bytes per pair
+// instead of per side), the same bits. A partner of lower id holds the pair
+// in its row whatever it is: its tables (its old list's entries or the row it
+// arrived with) hold every contact it touched.
 #include <cstddef>
 #include <cstdint>
 
+#include "contact/contact_model.hpp"
+#include "contact/pair_springs.hpp"
 #include "core/bits.hpp"
 #include "core/one_lane.hpp"
 #include "engine/pair_history.hpp"
+#include "neighbor/verlet_list.hpp"
 
 namespace gs {
 
@@ -32,6 +45,11 @@ namespace gs {
 struct DetachedContacts {
   DetachedTables tables;
   int width;
+  // Halved rows (above): the owned particles' ids, and only the contacts
+  // with a partner of higher id are i's; null: every contact.
+  const ParticleId* own_id = nullptr;
+
+  GS_HD bool keeps(Index i, ParticleId partner) const { return own_id == nullptr || partner > own_id[i]; }
 
   template <class F>
   GS_HD int for_each(Index i, const F& f) const {
@@ -47,7 +65,7 @@ struct DetachedContacts {
         ParticleId p_best = 0;
         for (int s = 0; s < width; ++s) {
           const ParticleId p = tables.pending_partner[row + std::size_t(s)];
-          if (p == kNoPartner || p >= kMeshPartnerBase || (any && p <= last)) continue;
+          if (p == kNoPartner || p >= kMeshPartnerBase || (any && p <= last) || !keeps(i, p)) continue;
           if (best < 0 || p < p_best) best = s, p_best = p;
         }
         if (best < 0) return n;
@@ -59,7 +77,7 @@ struct DetachedContacts {
     }
     if (o >= 0)
       for (ListOffset c = tables.carried_begin[o]; c < tables.carried_begin[o + 1]; ++c)
-        if (tables.carried_touching[c]) {
+        if (tables.carried_touching[c] && keeps(i, static_cast<ParticleId>(tables.carried_partner[c]))) {
           f(int(kFromCarried), std::size_t(c), static_cast<ParticleId>(tables.carried_partner[c]));
           ++n;
         }
@@ -93,6 +111,17 @@ GS_HD GS_INLINE void copy_entry(const FieldArrays<Real>& to, std::size_t k, cons
                                 std::size_t at) {
 #define GS_COPY_FIELD(name, value, bit) \
   if (to.name) to.name[k] = from.name[at];
+  GS_HISTORY_FIELDS(GS_COPY_FIELD)
+#undef GS_COPY_FIELD
+}
+
+// The same, as seen from the pair's other side: mirrored (contact/contact_model.hpp)
+// and each zero made +0, as PairSprings::store leaves it.
+template <class Real>
+GS_HD GS_INLINE void copy_entry_mirrored(const FieldArrays<Real>& to, std::size_t k, const FieldArrays<Real>& from,
+                                         std::size_t at) {
+#define GS_COPY_FIELD(name, value, bit) \
+  if (to.name) to.name[k] = positive_zeros(mirrored_field<Real>(from.name[at]));
   GS_HISTORY_FIELDS(GS_COPY_FIELD)
 #undef GS_COPY_FIELD
 }
@@ -137,7 +166,8 @@ struct KeepContacts {
     const ListOffset end = t.carried_begin[o + 1];
     for (ListOffset first = t.carried_begin[o]; first < end; first += ListOffset(g.size)) {
       const ListOffset e = first + ListOffset(g.rank);
-      const bool touching = e < end && t.carried_touching[e] != 0;
+      const bool touching = e < end && t.carried_touching[e] != 0 &&
+                            contacts.keeps(i, static_cast<ParticleId>(t.carried_partner[e]));
       const unsigned votes = g.ballot(touching);
       if (touching) {
         const ListOffset at = c + ListOffset(bit_count(votes & ((1u << g.rank) - 1u)));
@@ -178,7 +208,8 @@ struct KeptLayout {
 // fields from the kept contact of the same partner, or start from zero where
 // there is none; both rows are in ascending partner id, so each lane merges
 // its own entries (r, r + size, ...) with the kept row, from where its last
-// entry's search ended.
+// entry's search ended. In halved rows an entry whose partner has the lower
+// id finds the pair in the partner's kept row, by bisection, mirrored.
 template <class Real>
 struct MergeKept {
   static constexpr int kMinBlocksPerSM = kRowPassBlocksPerSM;
@@ -190,14 +221,28 @@ struct MergeKept {
   FieldArrays<Real> kept;
   std::uint8_t* touching;  // the new list's entries
   FieldArrays<Real> to;
+  bool halved = false;
   GS_HD void operator()(Index i) const { in_group(i, OneLane{}); }
 
   template <class Group>
   GS_HD void in_group(Index i, const Group& g) const {
     ListOffset c = kept_begin[i];
     const ListOffset c_end = kept_begin[i + 1];
+    const ParticleId own = id[i];
     for (ListOffset k = begin[i] + ListOffset(g.rank); k < begin[i + 1]; k += ListOffset(g.size)) {
-      const ParticleId partner = id[list[k]];
+      const Index j = list[k];
+      const ParticleId partner = id[j];
+      if (halved && partner < own) {
+        const ListOffset at = find_kept(j, own);
+        if (at != kNoEntry) {
+          touching[k] = 1;
+          copy_entry_mirrored(to, k, kept, at);
+        } else {
+          touching[k] = 0;
+          zero_entry(to, k);
+        }
+        continue;
+      }
       while (c < c_end && kept_partner[c] < partner) ++c;
       if (c < c_end && kept_partner[c] == partner) {
         touching[k] = 1;
@@ -207,6 +252,17 @@ struct MergeKept {
         zero_entry(to, k);
       }
     }
+  }
+
+  // The entry of particle j's kept row that names `partner`, or kNoEntry.
+  GS_HD ListOffset find_kept(Index j, ParticleId partner) const {
+    ListOffset lo = kept_begin[j], hi = kept_begin[j + 1];
+    while (lo < hi) {
+      const ListOffset mid = lo + (hi - lo) / 2;
+      if (kept_partner[mid] < partner) lo = mid + 1;
+      else hi = mid;
+    }
+    return lo < kept_begin[j + 1] && kept_partner[lo] == partner ? lo : kNoEntry;
   }
 };
 

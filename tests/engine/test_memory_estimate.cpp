@@ -49,8 +49,9 @@ constexpr double kCpuPairEntry = 4 + 24 + 1;
 // force and torque 12 each; per list entry a touching flag and a spring
 // (13), a surface row's index (4) and no row (no wall is near); Verlet list
 // offsets 4, fp32 reference 12, 12 entries of 4. A rebuild's peak, beyond
-// that, with history: the kept contacts, 12 of a partner id and a spring
-// (192), their offsets 4, the origin rows 4 and the cell order 4, the old
+// that, with history: the kept contacts, each pair's by one side (halved
+// rows: engine/pair_keep.hpp), 6 of a partner id and a spring (96), their
+// offsets 4, the origin rows 4 and the cell order 4, the old
 // references (12) freed; without history none: the sort's phase (the cell
 // order 4, a GPU's cell sort, 32-bit keys of the cell alone and their second
 // buffer and the indices' second buffer, 12) and the fill's (the cell order
@@ -66,8 +67,8 @@ TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   EXPECT_EQ(m.surface_row_share, 0);
   EXPECT_EQ(m.history_bytes, 12 * 13 + 4);
   EXPECT_EQ(m.list_bytes, 4 + 12 + 12 * 4);
-  EXPECT_EQ(m.build_bytes, 12 * (4 + 12) + 4 + 4 + 4 - 12);
-  EXPECT_EQ(m.bytes_per_particle, 90 + 24 + 160 + 64 + 192);
+  EXPECT_EQ(m.build_bytes, 12 / 2 * (4 + 12) + 4 + 4 + 4 - 12);
+  EXPECT_EQ(m.bytes_per_particle, 90 + 24 + 160 + 64 + 96);
   EXPECT_EQ(m.cpu_extra_bytes, 12 * kCpuPairEntry - 8);
   const MemoryEstimate none = estimate_memory(lattice_scene(2, 0));
   EXPECT_EQ(none.history_bytes, 0);
@@ -185,8 +186,9 @@ TEST(MemoryEstimate, MatchesTheRunsPeakOnTheCpu) {
 // lattice pressed 20 um into each of its 6 neighbours (balanced, so the same
 // contacts throughout), drifting as one body, rebuilt every 20 steps. Its
 // peak is what it holds between rebuilds with, while the kept contacts are
-// merged into the new list, 6 contacts of 16 bytes in the staging buffer and
-// their offsets (4) in place of the old list's references (12): the
+// merged into the new list, 6 contacts, each pair's kept by the side of
+// lower id (halved rows: one rank, every partner owned), so 3 of 16 bytes
+// in the staging buffer, and their offsets (4) in place of the old list's references (12): the
 // estimate with 6 entries and 6 contacts instead of 12, and the CPU's
 // kCpuPairEntry per entry (a GPU's peak comes earlier, while the contacts are
 // kept, beside the cell order and the origin rows, which the CPU's reverse
@@ -207,7 +209,7 @@ TEST(MemoryEstimate, RebuildHoldsTheTouchingContactsOnly) {
   ASSERT_EQ(got.contacts_per_particle, 6);
   const double entries = 6, contacts = 6, missing = kEstimatedListEntries - entries;
   const double held = m.bytes_per_particle - m.transient_bytes() - missing * (4 + 1 + 12) + entries * kCpuPairEntry;
-  const double keeping = contacts * (4 + 12) + 4 - 12;
+  const double keeping = contacts / 2 * (4 + 12) + 4 - 12;
   EXPECT_GE(got.bytes_per_particle, held + keeping);
   EXPECT_LT(got.bytes_per_particle, held + keeping + m.cell_bytes / double(scene.particles.size()) + 1)
       << "builds " << got.builds << ", held " << got.held_per_particle;

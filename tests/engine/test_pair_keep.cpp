@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "backend/cpu/cpu_exec.hpp"
@@ -162,6 +163,82 @@ TEST(PairKeep, NewEntriesFindTheirPartnersSprings) {
           EXPECT_EQ(tangential[k].y, 0) << lanes << " lanes, entry " << k;
         }
       });
+}
+
+// Halved rows (one rank, every partner owned): four particles whose store
+// order is not their id order (ids 30, 10, 40, 20), touching pairs (30, 10),
+// (30, 40) and (10, 20), each side's springs the other's negation (a zero
+// component stored +0 on both sides) and the same peak overlap. Kept, each
+// row holds only its partners of higher id; merged into a new list that
+// also pairs 40 and 20 (new, not touching), every entry gets the springs its
+// own row held, with the same bits (+0, not -0), as the whole rows give.
+TEST(PairKeep, HalvedRowsKeepEachPairOnceAndMirrorIt) {
+  const std::vector<ParticleId> id{30, 10, 40, 20};
+  const Vec3f s3010{1.5f, 0.0f, -2.0f}, s3040{-0.25f, 4.0f, 0.0f}, s1020{0.0f, -3.0f, 8.0f};
+  Detached d;
+  d.origin = {0, 1, 2, 3};
+  // Carried rows in ascending partner id: 30: {10, 40}; 10: {20, 30}; 40: {30}; 20: {10}.
+  d.carried_begin = {0, 2, 4, 5, 6};
+  d.carried_partner = {10, 40, 20, 30, 30, 10};
+  d.carried_touching = {1, 1, 1, 1, 1, 1};
+  d.carried_spring = {1, 2, 3, 1, 2, 3};  // the peak overlap: the same on both sides
+  d.carried_tangential = {s3010, s3040, s1020, -s3010 + Vec3f(), -s3040 + Vec3f(), -s1020 + Vec3f()};
+  // The new list: 30: {10, 40}; 10: {20, 30}; 40: {20, 30}; 20: {10, 40} (store indices).
+  const std::vector<ListOffset> list_begin{0, 2, 4, 6, 8};
+  const std::vector<Index> list{1, 2, 3, 0, 3, 0, 1, 2};
+  const std::size_t entries = list.size();
+  struct Merged {
+    std::vector<float> spring;
+    std::vector<Vec3f> tangential;
+    std::vector<std::uint8_t> touching;
+  };
+  auto keep_and_merge = [&](bool halved, int lanes) {
+    DetachedContacts contacts = d.contacts();
+    if (halved) contacts.own_id = id.data();
+    std::vector<ListOffset> begin(5);
+    CpuExec::parallel_for(4, CountKept{contacts, begin.data()});
+    DeviceArray<unsigned char> scratch(Backend::cpu);
+    const ListOffset total = CpuExec::scan_counts(begin.data(), 4, scratch, "the test's kept table");
+    EXPECT_EQ(total, halved ? 3u : 6u);
+    std::vector<ParticleId> partner(total);
+    std::vector<float> spring(total);
+    std::vector<Vec3f> tangential(total);
+    FieldArrays<float> kept, carried, pending;
+    kept.peak_overlap = spring.data();
+    kept.tangential = tangential.data();
+    carried.peak_overlap = d.carried_spring.data();
+    carried.tangential = d.carried_tangential.data();
+    const KeepContacts<float> keep{contacts, begin.data(), partner.data(), kept, carried, pending};
+    for (Index i = 0; i < 4; ++i) run_lanes(lanes, [&](const ThreadLane& g) { keep.in_group(i, g); });
+    if (halved) EXPECT_EQ(partner, (std::vector<ParticleId>{40, 20, 30}));  // 30's, 10's and 20's rows hold none
+    Merged m{std::vector<float>(entries, -7), std::vector<Vec3f>(entries, Vec3f(-7, -7, -7)),
+             std::vector<std::uint8_t>(entries, 7)};
+    FieldArrays<float> to;
+    to.peak_overlap = m.spring.data();
+    to.tangential = m.tangential.data();
+    const MergeKept<float> merge{list_begin.data(), list.data(), id.data(), begin.data(), partner.data(),
+                                 kept,              m.touching.data(), to,  halved};
+    for (Index i = 0; i < 4; ++i) run_lanes(lanes, [&](const ThreadLane& g) { merge.in_group(i, g); });
+    return m;
+  };
+  auto bits = [](float x) {
+    std::uint32_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+  };
+  const Merged whole = keep_and_merge(false, 1);
+  EXPECT_EQ(whole.touching, (std::vector<std::uint8_t>{1, 1, 1, 1, 0, 1, 1, 0}));
+  EXPECT_EQ(bits(whole.tangential[3].y), bits(-s3010.y + 0.0f));  // 10's side of (30, 10): +0, as stored
+  for (int lanes : {1, 2, 4, 8}) {
+    const Merged half = keep_and_merge(true, lanes);
+    EXPECT_EQ(half.touching, whole.touching) << lanes << " lanes";
+    for (std::size_t k = 0; k < entries; ++k) {
+      EXPECT_EQ(bits(half.spring[k]), bits(whole.spring[k])) << lanes << " lanes, entry " << k;
+      EXPECT_EQ(bits(half.tangential[k].x), bits(whole.tangential[k].x)) << lanes << " lanes, entry " << k;
+      EXPECT_EQ(bits(half.tangential[k].y), bits(whole.tangential[k].y)) << lanes << " lanes, entry " << k;
+      EXPECT_EQ(bits(half.tangential[k].z), bits(whole.tangential[k].z)) << lanes << " lanes, entry " << k;
+    }
+  }
 }
 
 // The old list's entries become the partners' ids, by any number of lanes.
