@@ -18,7 +18,8 @@
 // partner id, so each is found by the same merge.
 //
 // Halved rows: where every partner of the new list is an owned particle (the
-// store holds no ghosts: one rank, no periodic axis), a pair's two rows hold
+// store holds no ghosts: one rank, whose periodic axes take the nearest
+// image, not ghosts), a pair's two rows hold
 // the same contact, its springs the exact negation of each other's (contact/
 // pair_springs.hpp: what the CPU's pairs-once path already stores). Then
 // only the side of lower id keeps it, and the other side's new entry takes it
