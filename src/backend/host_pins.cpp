@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 #include "backend/check.hpp"
 
@@ -101,11 +103,13 @@ bool HostPins::hold_halves(Backend b, std::size_t half_bytes) {
 }
 
 void HostPins::fill_half(int h, const void* src, std::size_t bytes) {
+  if (!bounce_pinned_ || bytes > half_bytes_ || (h != 0 && h != 1))
+    throw std::logic_error("HostPins::fill_half: " + std::to_string(bytes) + " bytes into half " + std::to_string(h) +
+                           " of " + std::to_string(half_bytes_) + " held");
   wait_half(h);  // the host has read what it held (the caller's order); nothing runs into it
 #ifdef GS_HAVE_CUDA
   // The default stream, where every kernel runs (backend/cuda/cuda_exec.cuh).
-  GS_CUDA_CHECK(cudaMemcpyAsync(bounce_.data() + std::size_t(h) * half_bytes_, src, std::min(bytes, half_bytes_),
-                                cudaMemcpyDeviceToHost, 0));
+  GS_CUDA_CHECK(cudaMemcpyAsync(bounce_.data() + std::size_t(h) * half_bytes_, src, bytes, cudaMemcpyDeviceToHost, 0));
   GS_CUDA_CHECK(cudaEventRecord(static_cast<cudaEvent_t>(filled_[h]), 0));
   fill_queued_[h] = true;
 #else

@@ -63,7 +63,8 @@ class HostPins {
   // array, as the driver stages it).
   bool hold_halves(Backend b, std::size_t half_bytes);
   // Queues a copy of `bytes` (at most a half) of the backend's memory at
-  // `src` into half h (0 or 1), behind the kernels already launched.
+  // `src` into half h (0 or 1), behind the kernels already launched; more,
+  // or no halves held, is a caller's error (std::logic_error).
   void fill_half(int h, const void* src, std::size_t bytes);
   // Half h, once the copy last queued into it is done.
   const unsigned char* filled_half(int h);

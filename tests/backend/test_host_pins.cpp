@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "backend/device_array.hpp"
@@ -42,6 +43,8 @@ TEST_P(HostPinsTest, BounceBufferIsKeptAndPinnedOnAGpuOnly) {
   HostPins pins;
   EXPECT_EQ(pins.hold_halves(b, 4 << 20), gpu);  // none on the CPU: its kernels write the host arrays
   EXPECT_EQ(pins.pinned_bytes(), gpu ? std::size_t(8) << 20 : 0u);
+  EXPECT_THROW(pins.fill_half(0, nullptr, (std::size_t(4) << 20) + 1), std::logic_error);  // more than a half, or none held
+  EXPECT_THROW(pins.fill_half(2, nullptr, 1), std::logic_error);
   EXPECT_EQ(pins.hold_halves(b, 1 << 20), gpu);  // smaller: the same buffer
   EXPECT_EQ(pins.pinned_bytes(), gpu ? std::size_t(8) << 20 : 0u);
   EXPECT_EQ(pins.hold_halves(b, 8 << 20), gpu);  // larger: a new one, pinned anew
