@@ -201,7 +201,7 @@ if wanted random && (($(left) > 120)); then
       "$out/random_settle_$tag.log" $(($(left) > 150 ? 90 : $(left) - 60)))
     grep -E "particles,|set up|stopped|peak" "$out/random_settle_$tag.log"
     if [[ -z $checkpoint ]]; then echo "random bed: no checkpoint (see random_settle_$tag.log)"; continue; fi
-    timed=$(settlers | grep -q " " && echo "$settler" || echo "$before $after")  # each from its own, or both from one
+    timed=$([[ -n $before_src ]] && echo "$settler" || echo "$before $after")  # each from its own, or both from one
     for round in $rounds; do
       for b in $timed; do
         run_case random "$b" $round "$root" "$scenes/random.yaml" $(($(step_of "$checkpoint") + 300)) \
@@ -227,7 +227,7 @@ if wanted mixer_b && (($(left) > 90)); then
       "$out/mixer_b_settle_$tag.log" $(($(left) > 120 ? 60 : $(left) - 60)))
     grep -E "particles,|stopped|peak" "$out/mixer_b_settle_$tag.log"
     if [[ -z $checkpoint ]]; then echo "mixer b: no checkpoint (see mixer_b_settle_$tag.log)"; continue; fi
-    timed=$(settlers | grep -q " " && echo "$settler" || echo "$before $after")
+    timed=$([[ -n $before_src ]] && echo "$settler" || echo "$before $after")
     for round in $rounds; do
       for b in $timed; do
         run_case mixer_b "$b" $round "$(mixer_dir "$b")" .gpu_bench_b.yaml $(($(step_of "$checkpoint") + 5000)) \

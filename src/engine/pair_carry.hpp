@@ -18,6 +18,10 @@
 
 namespace gs {
 
+// Whether a build's kept rows are halved (engine/pair_keep.hpp): every
+// partner of the new list is owned, the store holding no ghosts.
+inline bool halved_rows(const ParticleStore& s) { return s.size() == s.n_owned; }
+
 template <class Exec, class Real>
 class PairCarry final : public StoreObserver, public ListFollower {
  public:
@@ -101,7 +105,6 @@ class PairCarry final : public StoreObserver, public ListFollower {
   StepState<Real>& st_;
   NeighbourFinder<Exec>& finder_;
   KeptLayout kept_;  // the kept table in the staging buffer, from list_building to list_built
-  bool halved_ = false;  // its rows halved (engine/pair_keep.hpp), from list_building to list_built
   DeviceArray<ListOffset> arrival_rows_{Exec::backend};  // arrive's scan into new surface rows
 };
 
@@ -133,9 +136,7 @@ void PairCarry<Exec, Real>::list_building(const ParticleStore& s) {
   PairHistory<Real>& h = st_.pairs;
   if (h.attached) throw std::logic_error("the pair history was not detached before the list's build");
   const Index n = s.n_owned;
-  // Halved rows where the new list's partners are all owned (engine/pair_keep.hpp).
-  halved_ = s.size() == s.n_owned;
-  const DetachedContacts contacts{h.detached_tables(), st_.row_width, halved_ ? s.id.data() : nullptr};
+  const DetachedContacts contacts{h.detached_tables(), st_.row_width, halved_rows(s) ? s.id.data() : nullptr};
   // The contacts are among the old list's entries and the pending rows' (so
   // the scan needs no check of its own for wrapping past 32-bit offsets).
   const std::uint64_t bound = std::uint64_t(h.carried_partner.size()) + std::uint64_t(h.pending_partner.size());
@@ -168,7 +169,7 @@ void PairCarry<Exec, Real>::list_built(const ParticleStore& s) {
   Exec::parallel_for_lanes(v.n_owned, kRowLanes,
                            MergeKept<Real>{v.begin.data(), v.list.data(), s.id.data(), h.kept_begin.data(), kept_partner,
                                            kept_fields(base), h.current.touching.data(), field_arrays(h.current),
-                                           halved_});
+                                           halved_rows(s)});
   h.kept_begin.discard();
   h.attached = true;
 }

@@ -25,7 +25,7 @@ struct RowAs {
 // copied to bounce half c % 2, both queued, while the host moves chunk c - 1
 // from the other bounce half to its place in `out` (pageable: no array pinned
 // whole) on every host thread. Without a bounce buffer (a copy made once)
-// each chunk goes straight to its place.
+// each chunk, as large as the rule allows, goes straight to its place.
 template <class Exec, class U, class Rows>
 void rows_to_host(std::vector<U>& out, Index n, std::size_t width, HostPins& pins, DeviceArray<unsigned char>& staging,
                   const Rows& rows) {
@@ -35,13 +35,16 @@ void rows_to_host(std::vector<U>& out, Index n, std::size_t width, HostPins& pin
     rows(0, n, out.data());
   } else {
     const std::size_t row_bytes = width * sizeof(U);
-    // Two halves of the chunk the rule allows: the output holds no more.
-    const Index chunk = std::max<Index>(1, output_chunk_rows(n, row_bytes, staging.bytes()) / 2);
+    const Index allowed = output_chunk_rows(n, row_bytes, staging.bytes());
+    // With a bounce buffer, two halves of the chunk the rule allows: the output holds no more.
+    const Index half = std::max<Index>(1, allowed / 2);
+    const bool halves = pins.hold_halves(Exec::backend, std::size_t(half) * row_bytes);
+    const Index chunk = halves ? half : allowed;
     const std::size_t chunk_bytes = std::size_t(chunk) * row_bytes;
-    staging.resize_discarding(2 * chunk_bytes);
+    staging.resize_discarding((halves ? 2 : 1) * chunk_bytes);
     auto staged = [&](int h) { return reinterpret_cast<U*>(staging.data() + std::size_t(h) * chunk_bytes); };
     auto place = [&](Index first) { return out.data() + std::size_t(first) * width; };
-    if (!pins.hold_halves(Exec::backend, chunk_bytes)) {
+    if (!halves) {
       for (Index first = 0; first < n; first += chunk) {
         const Index m = std::min(chunk, n - first);
         rows(first, m, staged(0));
