@@ -149,7 +149,7 @@ dense_runs "${size_list[@]:0:${#size_list[@]}-1}"
 settle_to_checkpoint() {
   local build=$1 dir=$2 scene=$3 run=$4 log=$5 limit=$6 pid stop
   rm -rf "$run"
-  (cd "$dir" && exec "$root/$build/src/grainstorm" run "$scene" --backend "$backend" --out "$run" --overwrite) \
+  (cd "$dir" && exec "$root/$build/src/grainstorm" run "$scene" --backend "$backend" --out "$run") \
     > "$log" 2>&1 &
   pid=$! stop=$((SECONDS + limit))
   while kill -0 "$pid" 2> /dev/null && ((SECONDS < stop)); do

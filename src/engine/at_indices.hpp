@@ -4,6 +4,7 @@
 // execution policies ask of the functor it wraps (resident blocks, lane
 // groups: backend/cuda/cuda_exec.cuh), so a subset of the particles runs as
 // the whole store would, each particle's work unchanged.
+#include "backend/launch_hints.hpp"
 #include "core/hd.hpp"
 #include "core/types.hpp"
 
@@ -12,6 +13,7 @@ namespace gs {
 template <class F>
 struct AtIndices {
   static constexpr int kMinBlocksPerSM = F::kMinBlocksPerSM;
+  static constexpr int kGroupBlocksPerSM = GroupBlocksPerSM<F>::value;
   F f;
   const Index* index;  // backend memory
 

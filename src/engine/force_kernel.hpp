@@ -76,12 +76,18 @@ struct ForceKernel {
 
   static constexpr bool kTorque = makes_torques(Effects);
   static constexpr bool kHistory = history_fields_kept<Model>(Effects) != 0;
-  // GPU launch hint: four blocks of 128 threads resident per multiprocessor,
-  // which caps the kernel at 128 registers. The mesh path, which most
-  // threads never take, had raised the frictional kernel to 132 registers
-  // and so to three blocks: a quarter of the warps, and 17 % of the
-  // throughput of a bed without meshes (docs/PERFORMANCE.md).
-  static constexpr int kMinBlocksPerSM = 4;
+  // GPU launch hints (backend/launch_hints.hpp). With history, four blocks
+  // of 128 threads resident per multiprocessor, which caps the kernel at
+  // 128 registers: the mesh path, which most threads never take, had raised
+  // the frictional kernel to 132 registers and so to three blocks, a quarter
+  // of the warps, and 17 % of the throughput of a bed without meshes; six or
+  // eight blocks made it slower again. Without history, one thread per
+  // particle waits on its partners' gathers with nothing to spare: eight
+  // blocks (64 registers) made that kernel 26 % faster, but a small scene's
+  // groups of lanes slower, so they keep four (docs/PERFORMANCE.md, "The
+  // next partner ahead, and the frictionless kernel at eight blocks").
+  static constexpr int kMinBlocksPerSM = kHistory ? 4 : 8;
+  static constexpr int kGroupBlocksPerSM = 4;
   static constexpr int kAnySlot = -2;  // apply(): find the contact's surface slot, or claim one
   // Mesh contacts without a slot wait until the others have taken theirs (at
   // most this many per particle; more claim a slot at once).
@@ -92,8 +98,12 @@ struct ForceKernel {
     unsigned touched = 0;
     int pairs_touching = 0;
     const Vec3d xi = position[i];
-    ParticleVisitor visit{this, i, xi, &total, &pairs_touching};
-    candidates.for_each(i, xi, visit);
+    if constexpr (std::is_same_v<Candidates, ListCandidates>) {
+      pairs_touching = add_list_contacts(i, xi, total);
+    } else {
+      ParticleVisitor visit{this, i, xi, &total, &pairs_touching};
+      candidates.for_each(i, xi, visit);
+    }
     add_wall_contacts(i, xi, total, touched);
     // One uniform branch per particle when the scene has no mesh (docs/MESHES.md, cost).
     if (meshes.n_triangles > 0) add_mesh_contacts(i, xi, total, touched);
@@ -202,14 +212,23 @@ struct ForceKernel {
   // fused mul_add(wi, lever_i, wj * lever_j) rounds the partner's product
   // first, and from j's side the other one.
   GS_HD GS_INLINE bool particle_kinematics(Index i, Index j, const Vec3d& xi, ContactKinematics<Real>& k) const {
-    const Vec3d d = box.separation(xi, position[j]);  // to the nearest image on the axes that wrap
-    const double reach = double(radius[i]) + double(radius[j]);
+    return particle_kinematics(i, j, xi, Partner{position[j], radius[j]}, k);
+  }
+  // Where the partner's position and radius were loaded beforehand (add_list_contacts).
+  struct Partner {
+    Vec3d position;
+    float radius;
+  };
+  GS_HD GS_INLINE bool particle_kinematics(Index i, Index j, const Vec3d& xi, const Partner& pj,
+                                           ContactKinematics<Real>& k) const {
+    const Vec3d d = box.separation(xi, pj.position);  // to the nearest image on the axes that wrap
+    const double reach = double(radius[i]) + double(pj.radius);
     const double distance2 = norm2(d);
     if (distance2 >= reach * reach) return false;
     const double distance = std::sqrt(distance2);
     k.overlap = Real(reach - distance);
     k.normal = Vec3<Real>(d) * (Real(1) / Real(distance));  // a unit vector needs no more than force precision
-    const Real ri = radius[i], rj = radius[j];
+    const Real ri = radius[i], rj = pj.radius;
     const Real lever_i = ri - Real(0.5) * k.overlap, lever_j = rj - Real(0.5) * k.overlap;
     const Vec3<Real> wi = spin(i), wj = spin(j);
     k.velocity = Vec3<Real>(velocity[i] - velocity[j]) - cross(add_rounded(wi * lever_i, wj * lever_j), k.normal);
@@ -256,17 +275,14 @@ struct ForceKernel {
   }
 
  private:
-  // Visitor of the candidate source: one possible partner j of particle i,
-  // at list entry k.
+  // Visitor of the cells' candidates: one possible partner j of particle i
+  // (a Verlet list's go through add_list_contacts).
   struct ParticleVisitor {
     const ForceKernel* kernel;
     Index i;
     Vec3d xi;
     ContactLoad<Real>* total;
     int* pairs_touching;
-    GS_HD GS_INLINE void operator()(Index j, ListOffset k) const {
-      if (j != i) *pairs_touching += kernel->add_particle_contact(i, j, k, xi, *total);
-    }
     // Candidates without list entries (cells) have nowhere to keep springs.
     GS_HD GS_INLINE void operator()(Index j) const {
       static_assert(!kHistory, "contact history needs the Verlet list's entries");
@@ -408,18 +424,50 @@ struct ForceKernel {
   // where they touch; else the entry is released (the contact has ended).
   GS_HD GS_INLINE int add_particle_contact(Index i, Index j, ListOffset entry, const Vec3d& xi,
                                            ContactLoad<Real>& total) const {
+    return add_particle_contact(i, j, entry, xi, Partner{position[j], radius[j]}, total);
+  }
+  GS_HD GS_INLINE int add_particle_contact(Index i, Index j, ListOffset entry, const Vec3d& xi, const Partner& pj,
+                                           ContactLoad<Real>& total) const {
     ContactLoad<Real> load;
-    if (!particle_contact(i, j, entry, xi, load)) return 0;
+    if (!particle_contact(i, j, entry, xi, pj, load)) return 0;
     add_to(total, load);
     return 1;
+  }
+
+  // The pairs of i's Verlet list entries, in list order, added to total;
+  // returns how many touch. The partner of the next entry, its position and
+  // radius, is loaded before this entry's contact is computed: a thread's
+  // gathers by partner id are what the kernel waits on (docs/PERFORMANCE.md,
+  // the force kernel's roofline), and the compiler does not move a load of
+  // entry k + 1 above the stores of entry k's springs by itself.
+  GS_HD GS_INLINE int add_list_contacts(Index i, const Vec3d& xi, ContactLoad<Real>& total) const {
+    const ListOffset end = candidates.begin[i + 1];
+    ListOffset k = candidates.begin[i];
+    if (k == end) return 0;
+    int touching = 0;
+    Index j = candidates.list[k];
+    Partner pj{position[j], radius[j]};
+    for (; k + 1 < end; ++k) {
+      const Index next = candidates.list[k + 1];
+      const Partner ahead{position[next], radius[next]};
+      if (j != i) touching += add_particle_contact(i, j, k, xi, pj, total);
+      j = next;
+      pj = ahead;
+    }
+    if (j != i) touching += add_particle_contact(i, j, k, xi, pj, total);
+    return touching;
   }
 
   // The load of the pair (i, j) of list entry `entry` on i, and true, where
   // they touch; else false, and the entry's springs are released.
   GS_HD GS_INLINE bool particle_contact(Index i, Index j, ListOffset entry, const Vec3d& xi,
                                         ContactLoad<Real>& load) const {
+    return particle_contact(i, j, entry, xi, Partner{position[j], radius[j]}, load);
+  }
+  GS_HD GS_INLINE bool particle_contact(Index i, Index j, ListOffset entry, const Vec3d& xi, const Partner& pj,
+                                        ContactLoad<Real>& load) const {
     ContactKinematics<Real> k;
-    if (!particle_kinematics(i, j, xi, k)) {
+    if (!particle_kinematics(i, j, xi, pj, k)) {
       if constexpr (kHistory) pair_history.release(entry);
       return false;
     }

@@ -14,6 +14,7 @@
 #include "backend/check.hpp"
 #include "backend/cuda/lane_group.cuh"
 #include "backend/device_array.hpp"
+#include "backend/launch_hints.hpp"
 #include "core/history_layout.hpp"
 #include "core/id_range.hpp"
 #include "neighbor/cell_list.hpp"
@@ -30,7 +31,7 @@ __global__ void for_each_kernel(Index n, F f) {
 }
 
 // The same, for a functor that asks for at least MinBlocks resident blocks
-// per multiprocessor (F::kMinBlocksPerSM): ptxas then caps its registers.
+// per multiprocessor (backend/launch_hints.hpp): ptxas then caps its registers.
 template <class F, int MinBlocks>
 __global__ void __launch_bounds__(kCudaBlock, MinBlocks) for_each_kernel_bounded(Index n, F f) {
   const Index i = Index(blockIdx.x) * Index(blockDim.x) + Index(threadIdx.x);
@@ -55,15 +56,6 @@ __global__ void scan_outcome_kernel(Index n, Wrapped wrapped, ListOffset* out) {
   if (i < n && wrapped(i)) out[0] = 1;
   if (i == n - 1) out[1] = wrapped.begin[n];
 }
-
-template <class F, class = void>
-struct MinBlocksPerSM {
-  static constexpr int value = 0;
-};
-template <class F>
-struct MinBlocksPerSM<F, std::void_t<decltype(F::kMinBlocksPerSM)>> {
-  static constexpr int value = F::kMinBlocksPerSM;
-};
 
 struct CudaExec {
   static constexpr Backend backend = Backend::cuda;
@@ -105,10 +97,10 @@ struct CudaExec {
     const int lanes = force_lanes(n, setting);
     if (lanes == 1) return parallel_for(n, f);
     if (n <= 0) return;
-    static_assert(MinBlocksPerSM<F>::value > 0, "a functor run in lane groups names its resident blocks");
+    static_assert(GroupBlocksPerSM<F>::value > 0, "a functor run in lane groups names its resident blocks");
     const long long threads = (long long)n * lanes;
     const unsigned blocks = unsigned((threads + kBlock - 1) / kBlock);
-    for_each_group_kernel<F, MinBlocksPerSM<F>::value><<<blocks, kBlock>>>(n, lanes, f);
+    for_each_group_kernel<F, GroupBlocksPerSM<F>::value><<<blocks, kBlock>>>(n, lanes, f);
     GS_CUDA_CHECK(cudaGetLastError());
   }
 
