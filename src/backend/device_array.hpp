@@ -35,13 +35,14 @@ class DeviceArray {
     if (n > capacity_) {
       std::size_t new_capacity = capacity_ + capacity_ / 4;
       if (new_capacity < n) new_capacity = n;
-      T* fresh = static_cast<T*>(backend_alloc(backend_, new_capacity * sizeof(T)));
-      if (size_ > 0) backend_copy(backend_, fresh, data_, size_ * sizeof(T));
-      release();
-      data_ = fresh;
-      capacity_ = new_capacity;
+      grow_to(new_capacity);
     }
     size_ = n;
+  }
+  // Room for n elements, keeping the first size(): a resize up to n then
+  // allocates nothing (no old and new storage held at once as it grows).
+  void reserve(std::size_t n) {
+    if (n > capacity_) grow_to(n);
   }
   // For scratch whose contents need not survive: grows without copying, so
   // the old and the new storage are never held at once (no peak of both).
@@ -92,6 +93,13 @@ class DeviceArray {
   Backend backend() const { return backend_; }
 
  private:
+  void grow_to(std::size_t capacity) {
+    T* fresh = static_cast<T*>(backend_alloc(backend_, capacity * sizeof(T)));
+    if (size_ > 0) backend_copy(backend_, fresh, data_, size_ * sizeof(T));
+    release();
+    data_ = fresh;
+    capacity_ = capacity;
+  }
   void release() noexcept {
     if (data_) backend_free(backend_, data_);
     data_ = nullptr;

@@ -55,6 +55,18 @@ class PairCarry final : public StoreObserver, public ListFollower {
     h.origin.resize(std::size_t(n));
     backend_copy(Exec::backend, h.origin.data(), tmp, std::size_t(n) * sizeof(Index));
   }
+  // Room for the rows of owned particles [first, first + m) arriving in
+  // pieces (a restart's: ParticleMover::arrive_from_host), so that the
+  // pending table and the origins grow once, not at every piece with their
+  // old and new storage held at once.
+  void reserve_arrivals(Index first, Index m) {
+    if (!st_.keeps_history() || m == 0) return;
+    PairHistory<Real>& h = st_.pairs;
+    const std::size_t rows = (std::size_t(h.pending_rows) + std::size_t(m)) * std::size_t(st_.row_width);
+    h.pending_partner.reserve(rows);
+    h.pending.reserve_fields(rows, st_.kept);
+    h.origin.reserve(std::size_t(first) + std::size_t(m));
+  }
   // m arriving owned particles at [first, first + m), with rows given as
   // packed slot-major blocks in backend memory: partner ids, and each kept
   // field (fields[k] in GS_HISTORY_FIELDS order; null where not kept).
@@ -186,7 +198,7 @@ void PairCarry<Exec, Real>::arrive(Index first, Index m, const ParticleId* partn
   h.pending_rows += m;
   const std::size_t rows = std::size_t(h.pending_rows) * std::size_t(width);
   h.pending_partner.resize(rows);
-  h.pending.resize(rows, st_.kept);
+  h.pending.resize_fields(rows, st_.kept);
   Exec::parallel_for(m, RowsToPending<ParticleId>{partner, h.pending_partner.data(), width, m, row0});
   int f = 0;
   for_each_history_field(h.pending, [&](const char*, unsigned bit, auto& a) {

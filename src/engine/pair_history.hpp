@@ -66,8 +66,18 @@ struct PairEntries {
   }
   void resize(std::size_t n, unsigned kept) {
     touching.resize(n);
+    resize_fields(n, kept);
+  }
+  // The kept fields alone, keeping their first entries (rows whose touching
+  // flags go unused: the pending rows).
+  void resize_fields(std::size_t n, unsigned kept) {
     for_each_history_field(*this, [&](const char*, unsigned bit, auto& a) {
       if (kept & bit) a.resize(n);
+    });
+  }
+  void reserve_fields(std::size_t n, unsigned kept) {
+    for_each_history_field(*this, [&](const char*, unsigned bit, auto& a) {
+      if (kept & bit) a.reserve(n);
     });
   }
   void swap(PairEntries& o) {

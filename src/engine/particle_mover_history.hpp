@@ -1,6 +1,7 @@
 #pragma once
 // Out-of-line members of ParticleMover: re-sorting the store, laying the
 // history out, and the history from the host.
+#include <algorithm>
 #include <stdexcept>
 #include <type_traits>
 
@@ -98,36 +99,58 @@ void ParticleMover<Exec, Real>::set_history(const ParticleStore& s, const HostHi
   arrive_from_host(s, 0, h);
 }
 
+// The rows an arrival from the host moves through backend memory at a time:
+// a 32nd of them, at least 1024 (192 KiB at 12 slots), so that a restart adds
+// a few bytes per particle to what the pending table holds, in at most 32
+// pieces (each a few launches and a read of a count).
+inline std::size_t arrival_piece(std::size_t rows) {
+  return std::max(std::size_t(1024), (rows + 31) / 32);
+}
+
 // Host rows of particles [first, first + rows) as arrivals (engine/pair_carry.hpp),
-// through packed slot-major blocks in backend memory in the force precision.
+// through packed slot-major blocks in backend memory in the force precision,
+// a piece of the rows at a time (arrival_piece): a restart's rows, 16 bytes a
+// slot, would otherwise stand in backend memory twice, as blocks and as the
+// pending table they are copied into (docs/PERFORMANCE.md, "A restart's
+// contact rows in pieces").
 template <class Exec, class Real>
 void ParticleMover<Exec, Real>::arrive_from_host(const ParticleStore& s, Index first, const HostHistory& h) {
   const std::size_t slots = std::size_t(h.slots);
   const std::size_t count = slots == 0 ? 0 : h.partner.size() / slots;
   if (count == 0) return;
-  auto block_of = [&](const auto& rows, auto& device) {
+  for_each_history_field(h, [&](const char* name, unsigned bit, const auto& rows) {
+    if ((st_.kept & bit) && rows.size() != h.partner.size())
+      throw std::invalid_argument(std::string("contact history lacks the field ") + name + " this run keeps");
+  });
+  // Rows [c0, c0 + m) of `rows` into `device` as a slot-major block.
+  auto block_of = [&](const auto& rows, auto& device, std::size_t c0, std::size_t m) {
     using T = typename std::decay_t<decltype(device)>::value_type;
-    std::vector<T> block(slots * count);
-    for (std::size_t i = 0; i < count; ++i)
-      for (std::size_t k = 0; k < slots; ++k) block[k * count + i] = T(rows[i * slots + k]);
+    std::vector<T> block(slots * m);
+    for (std::size_t i = 0; i < m; ++i)
+      for (std::size_t k = 0; k < slots; ++k) block[k * m + i] = T(rows[(c0 + i) * slots + k]);
     device.from_host(block);
   };
+  pairs_.reserve_arrivals(first, Index(count));
   DeviceArray<ParticleId> partner(Exec::backend);
-  block_of(h.partner, partner);
   ContactHistory<Real> fields;  // one block per kept field, in GS_HISTORY_FIELDS order
-  const void* at[kHistoryFieldCount] = {};
-  int f = 0;
-  for_each_history_field(h, fields, [&](const char* name, unsigned bit, const auto& rows, auto& device) {
+  for_each_history_field(fields, [&](const char*, unsigned, auto& device) {
     device = std::decay_t<decltype(device)>(Exec::backend);
-    if (st_.kept & bit) {
-      if (rows.size() != h.partner.size())
-        throw std::invalid_argument(std::string("contact history lacks the field ") + name + " this run keeps");
-      block_of(rows, device);
-      at[f] = device.data();
-    }
-    ++f;
   });
-  pairs_.arrive(first, Index(count), partner.data(), at, s.id.data());
+  const std::size_t piece = arrival_piece(count);
+  for (std::size_t c0 = 0; c0 < count; c0 += piece) {
+    const std::size_t m = std::min(piece, count - c0);
+    block_of(h.partner, partner, c0, m);
+    const void* at[kHistoryFieldCount] = {};
+    int f = 0;
+    for_each_history_field(h, fields, [&](const char*, unsigned bit, const auto& rows, auto& device) {
+      if (st_.kept & bit) {
+        block_of(rows, device, c0, m);
+        at[f] = device.data();
+      }
+      ++f;
+    });
+    pairs_.arrive(first + Index(c0), Index(m), partner.data(), at, s.id.data());
+  }
 }
 
 }  // namespace gs
