@@ -75,8 +75,8 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   const double entries = estimated_list_entries(scene.verlet_skin);
   double kept = 0;        // the kept contacts at a rebuild, per particle
   double pair_entry = 0;  // a list entry's touching flag and springs
+  double springs = 0;     // one contact's history fields
   if (fields_kept != 0) {
-    double springs = 0;  // one contact's history fields
     double largest = sizeof(ParticleId);  // the largest array of a surface table
     auto add_field = [&](double bytes) {
       springs += bytes;
@@ -143,8 +143,22 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
     }
     return std::max({0.0, sort, -freed + order + list_entries});
   };
+  // A restart before and through its first build, against what is held
+  // between rebuilds: the checkpoint's contact rows wait in the pending
+  // table (contact_slots of a partner id and the springs per particle) with
+  // each particle's origin, first beside a piece of them in transit (a
+  // 32nd: engine/particle_mover_history.hpp), then beside the build's sort
+  // and, until the contacts are kept, its kept contacts; no list and no
+  // entries exist yet.
+  auto restart_peak = [&](double sort_buffers) {
+    const double row = double(scene.contact_slots) * (sizeof(ParticleId) + springs);
+    const double phase = std::max({row / 32, order + std::max(double(sizeof(double)), sort_buffers),
+                                   order + sizeof(ListOffset) + kept});
+    return std::max(0.0, row + origin + phase - m.list_bytes - pair_entry * entries);
+  };
   const double key = m.cells <= (std::int64_t(1) << 32) ? sizeof(std::uint32_t) : sizeof(std::uint64_t);
   m.build_bytes = build_peak(2 * key + sizeof(Index), 0);
+  if (history) m.restart_bytes = restart_peak(2 * key + sizeof(Index));
   // An output's chunk (engine/output_chunk.hpp) per particle: the
   // positions' (with history a build's phase outweighs any chunk), a 32nd
   // of them but at least 1 MiB, and no more than the whole field.
@@ -158,10 +172,12 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   // Its output writes the host's arrays directly (no chunks), with an order
   // array where the ids need not be dense (the order itself made on the host).
   const double cpu_output = ids_stay_dense ? 0 : sizeof(Index);
-  m.cpu_extra_bytes =
-      cpu_held * entries +
-      std::max(build_peak(2.0 * sizeof(std::uint64_t) + sizeof(Index), sizeof(ListOffset)), cpu_output) -
-      m.transient_bytes();
+  const double cpu_phase =
+      cpu_held * entries + std::max(build_peak(2.0 * sizeof(std::uint64_t) + sizeof(Index), sizeof(ListOffset)), cpu_output);
+  // Through a restart's first build the CPU holds what a GPU does (no list,
+  // no entries) but for its wider sort keys.
+  const double cpu_restart = history ? restart_peak(2.0 * sizeof(std::uint64_t) + sizeof(Index)) : 0;
+  m.cpu_extra_bytes = std::max(cpu_phase, cpu_restart) - m.transient_bytes();
   const MeshSet& meshes = scene.meshes;
   if (r > 0 && meshes.n_meshes() > 0) {
     const double skin = 2 * r * scene.verlet_skin;

@@ -35,8 +35,17 @@ struct MemoryEstimate {
   // need not, the order by id and its sort's keys and second buffers (4 +
   // 12; the chunks then fit in the sort's staging buffer).
   double output_bytes = 0;
-  // A build and an output never overlap: the larger of the two.
-  double transient_bytes() const { return std::max(build_bytes, output_bytes); }
+  // What a restart holds until its first build has kept its contacts,
+  // beyond what the run holds between rebuilds, per particle
+  // (engine/particle_mover_history.hpp): the checkpoint's contact rows in
+  // the pending table (contact_slots of a partner id and the springs) and
+  // each particle's origin, beside a piece of the rows in transit (a 32nd)
+  // or the build's sort or kept contacts, where the Verlet list and its
+  // entries' springs are not built yet; 0 where that holds less (without
+  // history, or with rows narrower than the list's entries).
+  double restart_bytes = 0;
+  // A build, an output and a restart's arrival never overlap: the largest.
+  double transient_bytes() const { return std::max({build_bytes, output_bytes, restart_bytes}); }
   double cell_bytes = 0;          // the cells' offsets, while a rebuild holds the cell list
   // The CPU's alone, not in bytes_per_particle, per particle: computing each
   // pair once keeps per list entry the partner's reverse entry, a load
@@ -59,7 +68,7 @@ struct MemoryEstimate {
 // the sort's buffers, in the staging buffer, or the new list's entries, and
 // with history the pair history's kept contacts, each pair's by one side:
 // engine/pair_keep.hpp) or
-// of an output, whichever is larger, on one rank; and
+// of an output or of a restart's arrival, whichever is largest, on one rank; and
 // the meshes with their binning, at the smallest cells a run uses (one
 // largest diameter: the most cells). docs/PERFORMANCE.md ("Bytes per
 // particle") lists the same parts.

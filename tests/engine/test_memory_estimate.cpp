@@ -289,5 +289,40 @@ TEST(MemoryEstimate, RestartPeaksNoHigherThanTheRunItContinues) {
   EXPECT_GT(run_peak, 12 * (4 + 12));  // what the test is about: rows of that size
 }
 
+// With rows wider than the list (contact_slots 24), a restart's first
+// build is the run's peak, and the estimate counts it
+// (MemoryEstimate::restart_bytes): the state, the forces, each particle's
+// surface row index and origin, the pending rows (24 of 16 bytes) and, while
+// the build keeps the touching contacts, the cell order, the kept contacts'
+// offsets and the contacts themselves, before any list exists. The estimate
+// of the list and its entries drops out; its kept contacts are twelve a
+// particle, each pair's by one side (6 of 16 bytes), the lattice's 5.81 (of
+// 32768 spheres, 2.91 kept). So the CPU's peak while it constructs the
+// restarted run (which builds its first list) is the estimate's, less the
+// contacts the lattice lacks, within the cells' offsets.
+TEST(MemoryEstimate, CountsARestartsContactRows) {
+  SceneSpec scene = lattice_scene(32, kFriction, 0.00198);
+  scene.domain_max = {0.05, 0.05, 0.05};
+  scene.contact_slots = 24;
+  const double n = double(scene.particles.size());
+  Simulation first(scene, RunOptions{Backend::cpu});
+  first.run(2);
+  const std::string path = (std::filesystem::path(::testing::TempDir()) / "memory_wide_rows.h5").string();
+  write_checkpoint(path, make_checkpoint(first.snapshot(), first.history(), first.walls(), 0, 1, first.insertion()));
+  const RestartState state = restart_state(read_checkpoint(path));
+  std::filesystem::remove(path);
+  backend_reset_peak(Backend::cpu);
+  const std::size_t before = backend_peak_bytes(Backend::cpu);
+  Simulation second(scene, RunOptions{Backend::cpu}, nullptr, state);
+  const double peak = double(backend_peak_bytes(Backend::cpu) - before) / n;
+  const MemoryEstimate m = estimate_memory(scene);
+  ASSERT_GT(m.restart_bytes, m.build_bytes);
+  const double estimated = m.field_bytes + m.force_bytes + m.history_bytes + m.list_bytes + m.restart_bytes;
+  EXPECT_DOUBLE_EQ(m.bytes_per_particle, estimated);
+  const double kept_missing = (4 + 12) * (kEstimatedListEntries - (6.0 - 6.0 / 32)) / 2;
+  EXPECT_GE(peak, estimated - kept_missing);
+  EXPECT_LT(peak, estimated - kept_missing + m.cell_bytes / n + 1) << "restart bytes " << m.restart_bytes;
+}
+
 }  // namespace
 }  // namespace gs::test
