@@ -172,8 +172,8 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   // Its output writes the host's arrays directly (no chunks), with an order
   // array where the ids need not be dense (the order itself made on the host).
   const double cpu_output = ids_stay_dense ? 0 : sizeof(Index);
-  const double cpu_phase =
-      cpu_held * entries + std::max(build_peak(2.0 * sizeof(std::uint64_t) + sizeof(Index), sizeof(ListOffset)), cpu_output);
+  const double cpu_build = build_peak(2.0 * sizeof(std::uint64_t) + sizeof(Index), sizeof(ListOffset));
+  const double cpu_phase = cpu_held * entries + std::max(cpu_build, cpu_output);
   // Through a restart's first build the CPU holds what a GPU does (no list,
   // no entries) but for its wider sort keys.
   const double cpu_restart = history ? restart_peak(2.0 * sizeof(std::uint64_t) + sizeof(Index)) : 0;
