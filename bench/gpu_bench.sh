@@ -22,8 +22,9 @@
 #             1 s to a checkpoint, then timed turning at 30 rpm.
 #  mixer_a    the small scene: mixer case a, timed from its start (settling).
 #  dense_2ranks  the smallest dense bed on 2 ranks sharing the GPU.
-# Bytes per particle: the run's peak device memory (printed to 0.1 GiB or
-# MiB) over its particles. Contacts per particle: occupied contact-history
+# Bytes per particle: the run's peak device memory per owned particle, as
+# its log prints it (an older build's, "~", from its peak printed to 0.1 GiB
+# or MiB over its particles). Contacts per particle: occupied contact-history
 # slots (walls included) over particles at the end (the run's timeseries.csv).
 # BACKEND=cpu runs it all on the CPU instead (a dry run of the script);
 # SKIP="random mixer_b ..." leaves those benchmarks out; RANDOM_BED_N sets the
@@ -63,16 +64,21 @@ print(f"{c / n:.2f}" if c >= 0 and n > 0 else "-")
 PY
 }
 
-# Bytes per particle from a run log's "peak cuda memory" and particle count.
+# Bytes per particle of a run log: its exact figure ("N bytes per owned
+# particle") where it has one, else (an older build) the peak printed in
+# GiB or MiB over the particle count, marked "~" (printed to 0.1 GiB: +-13
+# bytes per particle at 4e6).
 bytes_of() {
   python3 - "$1" "$backend" <<'PY'
 import re, sys
 t = open(sys.argv[1]).read()
+exact = re.search(sys.argv[2] + r" memory \(rank 0\): [^,\n]+, ([\d.]+) bytes per owned particle", t)
+if exact: print(exact.group(1)); sys.exit()
 n = re.search(r"(\d+) particles, backend", t)
 m = re.search(sys.argv[2] + r" memory \(rank 0\): ([\d.]+) (B|KiB|MiB|GiB|TiB)", t)
 if not (n and m): print("-"); sys.exit()
 scale = {"B": 1, "KiB": 2**10, "MiB": 2**20, "GiB": 2**30, "TiB": 2**40}[m.group(2)]
-print(f"{float(m.group(1)) * scale / int(n.group(1)):.0f}")
+print(f"~{float(m.group(1)) * scale / int(n.group(1)):.0f}")
 PY
 }
 
