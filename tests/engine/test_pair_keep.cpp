@@ -210,7 +210,9 @@ TEST(PairKeep, HalvedRowsKeepEachPairOnceAndMirrorIt) {
     carried.tangential = d.carried_tangential.data();
     const KeepContacts<float> keep{contacts, begin.data(), partner.data(), kept, carried, pending};
     for (Index i = 0; i < 4; ++i) run_lanes(lanes, [&](const ThreadLane& g) { keep.in_group(i, g); });
-    if (halved) EXPECT_EQ(partner, (std::vector<ParticleId>{40, 20, 30}));  // 30's, 10's and 20's rows hold none
+    if (halved) {
+      EXPECT_EQ(partner, (std::vector<ParticleId>{40, 20, 30}));  // 30's, 10's and 20's rows hold none
+    }
     Merged m{std::vector<float>(entries, -7), std::vector<Vec3f>(entries, Vec3f(-7, -7, -7)),
              std::vector<std::uint8_t>(entries, 7)};
     FieldArrays<float> to;
