@@ -81,11 +81,12 @@ struct ForceKernel {
   // 128 registers: the mesh path, which most threads never take, had raised
   // the frictional kernel to 132 registers and so to three blocks, a quarter
   // of the warps, and 17 % of the throughput of a bed without meshes; six or
-  // eight blocks made it slower again. Without history, one thread per
-  // particle waits on its partners' gathers with nothing to spare: eight
-  // blocks (64 registers) made that kernel 26 % faster, but a small scene's
-  // groups of lanes slower, so they keep four (docs/PERFORMANCE.md, "The
-  // next partner ahead, and the frictionless kernel at eight blocks").
+  // eight blocks made it slower again. Without history the kernel, bound
+  // by the latency of its partners' gathers too, gains from more resident
+  // warps: eight blocks (64 registers) cut its time by a quarter, but made
+  // a small scene's groups of lanes slower, so they keep four
+  // (docs/PERFORMANCE.md, "The next partner ahead, and the frictionless
+  // kernel at eight blocks").
   static constexpr int kMinBlocksPerSM = kHistory ? 4 : 8;
   static constexpr int kGroupBlocksPerSM = 4;
   static constexpr int kAnySlot = -2;  // apply(): find the contact's surface slot, or claim one
