@@ -41,10 +41,6 @@ int command_check(const std::vector<std::string>& args) {
     std::printf("                %.1f %% of the particles start within reach of a wall or mesh: the estimate gives "
                 "them rows of surface slots\n",
                 100 * m.surface_row_share);
-  if (m.restart_bytes > std::max(m.build_bytes, m.output_bytes))
-    std::printf("                the peak is a restart's: its rows of %d contact slots wait for the first list "
-                "build\n",
-                scene.contact_slots);
   if (scene.meshes.n_meshes() > 0)
     std::printf("meshes:         %d triangles, %s with their binning (%.3g cells, up to %.3g entries)\n",
                 int(scene.meshes.n_triangles()), human_bytes(m.mesh_bytes).c_str(), m.mesh_cells, m.mesh_entries);

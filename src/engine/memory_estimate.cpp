@@ -144,17 +144,20 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
     return std::max({0.0, sort, -freed + order + list_entries});
   };
   // A restart before and through its first build, against what is held
-  // between rebuilds: the checkpoint's contact rows wait in the pending
-  // table (contact_slots of a partner id and the springs per particle) with
-  // each particle's origin, first beside a piece of them in transit (a
-  // 32nd: engine/particle_mover_history.hpp), then beside the build's sort
-  // and, until the contacts are kept, its kept contacts; no list and no
-  // entries exist yet.
+  // between rebuilds: the pair contacts of the checkpoint's rows wait in the
+  // pending table (a partner id and the springs each, both sides of a pair,
+  // at most twelve or contact_slots; a row's offset) with each particle's
+  // origin, first beside a piece of the rows in transit (a 32nd of the
+  // contact_slots: engine/particle_mover_history.hpp), then beside the
+  // build's sort and, until the contacts are kept, its kept contacts; no
+  // list and no entries exist yet.
   auto restart_peak = [&](double sort_buffers) {
-    const double row = double(scene.contact_slots) * (sizeof(ParticleId) + springs);
-    const double phase = std::max({row / 32, order + std::max(double(sizeof(double)), sort_buffers),
+    const double contact = sizeof(ParticleId) + springs;
+    const double pending = std::min(double(scene.contact_slots), kEstimatedListEntries) * contact + sizeof(ListOffset);
+    const double phase = std::max({double(scene.contact_slots) * contact / 32,
+                                   order + std::max(double(sizeof(double)), sort_buffers),
                                    order + sizeof(ListOffset) + kept});
-    return std::max(0.0, row + origin + phase - m.list_bytes - pair_entry * entries);
+    return std::max(0.0, pending + origin + phase - m.list_bytes - pair_entry * entries);
   };
   const double key = m.cells <= (std::int64_t(1) << 32) ? sizeof(std::uint32_t) : sizeof(std::uint64_t);
   m.build_bytes = build_peak(2 * key + sizeof(Index), 0);

@@ -37,12 +37,14 @@ struct MemoryEstimate {
   double output_bytes = 0;
   // What a restart holds until its first build has kept its contacts,
   // beyond what the run holds between rebuilds, per particle
-  // (engine/particle_mover_history.hpp): the checkpoint's contact rows in
-  // the pending table (contact_slots of a partner id and the springs) and
-  // each particle's origin, beside a piece of the rows in transit (a 32nd)
-  // or the build's sort or kept contacts, where the Verlet list and its
-  // entries' springs are not built yet; 0 where that holds less (without
-  // history, or with rows narrower than the list's entries).
+  // (engine/particle_mover_history.hpp): the pair contacts of the
+  // checkpoint's rows in the pending table (a partner id and the springs
+  // each, at most twelve, and a row's offset) and each particle's origin,
+  // beside a piece of the rows in transit (a 32nd) or the build's sort or
+  // kept contacts, where the Verlet list and its entries' springs are not
+  // built yet; 0 where that holds less (without history). Below a build's
+  // phases: the pending contacts are at most the list's entries, and a
+  // build holds the old list and its springs beside the same kept contacts.
   double restart_bytes = 0;
   // A build, an output and a restart's arrival never overlap: the largest.
   double transient_bytes() const { return std::max({build_bytes, output_bytes, restart_bytes}); }

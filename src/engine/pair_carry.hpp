@@ -55,21 +55,24 @@ class PairCarry final : public StoreObserver, public ListFollower {
     h.origin.resize(std::size_t(n));
     backend_copy(Exec::backend, h.origin.data(), tmp, std::size_t(n) * sizeof(Index));
   }
-  // Room for the rows of owned particles [first, first + m) arriving in
-  // pieces (a restart's: ParticleMover::arrive_from_host), so that the
-  // pending table and the origins grow once, not at every piece with their
-  // old and new storage held at once.
-  void reserve_arrivals(Index first, Index m) {
+  // Room for the rows of owned particles [first, first + m), holding
+  // `pairs` pair contacts, arriving in pieces (a restart's:
+  // ParticleMover::arrive_from_host), so that the pending table and the
+  // origins grow once, not at every piece with their old and new storage
+  // held at once.
+  void reserve_arrivals(Index first, Index m, std::size_t pairs) {
     if (!st_.keeps_history() || m == 0) return;
     PairHistory<Real>& h = st_.pairs;
-    const std::size_t rows = (std::size_t(h.pending_rows) + std::size_t(m)) * std::size_t(st_.row_width);
-    h.pending_partner.reserve(rows);
-    h.pending.reserve_fields(rows, st_.kept);
+    h.pending_begin.reserve(std::size_t(h.pending_rows) + std::size_t(m) + 1);
+    h.pending_partner.reserve(h.pending_partner.size() + pairs);
+    h.pending.reserve_fields(h.pending_partner.size() + pairs, st_.kept);
     h.origin.reserve(std::size_t(first) + std::size_t(m));
   }
   // m arriving owned particles at [first, first + m), with rows given as
   // packed slot-major blocks in backend memory: partner ids, and each kept
-  // field (fields[k] in GS_HISTORY_FIELDS order; null where not kept).
+  // field (fields[k] in GS_HISTORY_FIELDS order; null where not kept). Their
+  // surface contacts go to the surface table, their pair contacts to the
+  // pending table.
   void arrive(Index first, Index m, const ParticleId* partner, const void* const* fields, const ParticleId* id);
   // The rows' view of store s.
   ContactRows rows(const ParticleStore& s) const;
@@ -148,7 +151,7 @@ void PairCarry<Exec, Real>::list_building(const ParticleStore& s) {
   PairHistory<Real>& h = st_.pairs;
   if (h.attached) throw std::logic_error("the pair history was not detached before the list's build");
   const Index n = s.n_owned;
-  const DetachedContacts contacts{h.detached_tables(), st_.row_width, halved_rows(s) ? s.id.data() : nullptr};
+  const DetachedContacts contacts{h.detached_tables(), halved_rows(s) ? s.id.data() : nullptr};
   // The contacts are among the old list's entries and the pending rows' (so
   // the scan needs no check of its own for wrapping past 32-bit offsets).
   const std::uint64_t bound = std::uint64_t(h.carried_partner.size()) + std::uint64_t(h.pending_partner.size());
@@ -193,28 +196,31 @@ void PairCarry<Exec, Real>::arrive(Index first, Index m, const ParticleId* partn
   PairHistory<Real>& h = st_.pairs;
   if (h.attached) throw std::logic_error("particles arrived without a change of the store");
   ensure_origin(first + m);
-  const int width = st_.row_width;
+  const ArrivingRows arriving{partner, st_.row_width, m};
+  // Pending rows [row0, row0 + m): their pair contacts after those pending.
   const Index row0 = h.pending_rows;
   h.pending_rows += m;
-  const std::size_t rows = std::size_t(h.pending_rows) * std::size_t(width);
-  h.pending_partner.resize(rows);
-  h.pending.resize_fields(rows, st_.kept);
-  Exec::parallel_for(m, RowsToPending<ParticleId>{partner, h.pending_partner.data(), width, m, row0});
+  h.pending_begin.resize(std::size_t(h.pending_rows) + 1);
+  ListOffset* begin = h.pending_begin.data() + row0;
+  Exec::parallel_for(m, CountArrivingPairs{arriving, begin, ListOffset(h.pending_partner.size())});
+  const std::size_t entries = Exec::scan_counts(begin, m, finder_.verlet().scan_scratch, "the pending contact rows");
+  h.pending_partner.resize(entries);
+  h.pending.resize_fields(entries, st_.kept);
+  Exec::parallel_for(m, PairsToPending<ParticleId>{arriving, partner, h.pending_partner.data(), begin});
   int f = 0;
   for_each_history_field(h.pending, [&](const char*, unsigned bit, auto& a) {
     using T = typename std::decay_t<decltype(a)>::value_type;
     if ((st_.kept & bit) && fields[f])
-      Exec::parallel_for(m, RowsToPending<T>{static_cast<const T*>(fields[f]), a.data(), width, m, row0});
+      Exec::parallel_for(m, PairsToPending<T>{arriving, static_cast<const T*>(fields[f]), a.data(), begin});
     ++f;
   });
   Exec::parallel_for(m, PendingOrigins{h.origin.data(), first, row0});
   ContactHistory<Real>& surface = st_.history;
-  Exec::parallel_for(m, SurfaceOverflow{h.pending_partner.data(), id, width, surface.slots, row0, first,
-                                        st_.fault.data()});
+  Exec::parallel_for(m, SurfaceOverflow{arriving, id, surface.slots, first, st_.fault.data()});
   // Rows at the table's end for the arrivals with surface contacts, the
   // others none (the next build gives each particle its row anew:
   // engine/surface_rows.hpp); the particles' rows reach first + m (reserve).
-  const PendingSurfaces surfaces{h.pending_partner.data(), width, surface.slots, row0, first, surface.row.data()};
+  const PendingSurfaces surfaces{arriving, surface.slots, first, surface.row.data()};
   arrival_rows_.resize_discarding(std::size_t(m) + 1);
   Exec::parallel_for(m, CountPendingSurfaces{surfaces, arrival_rows_.data()});
   const Index added = Index(Exec::scan_counts(arrival_rows_.data(), m, finder_.verlet().scan_scratch, nullptr));
@@ -223,10 +229,13 @@ void PairCarry<Exec, Real>::arrive(Index first, Index m, const ParticleId* partn
   Exec::parallel_for(m, PendingSurfaceRows{surface.row.data(), first, surface.rows, arrival_rows_.data()});
   surface.rows += added;
   Exec::parallel_for(m, PendingPartnersToSurface{surfaces, surface.partner.data(), surface.strides});
-  for_each_history_field(h.pending, surface, [&](const char*, unsigned bit, const auto& from, auto& to) {
+  f = 0;
+  for_each_history_field(surface, [&](const char*, unsigned bit, auto& to) {
     using T = typename std::decay_t<decltype(to)>::value_type;
-    if (st_.kept & bit)
-      Exec::parallel_for(m, PendingFieldToSurface<T>{surfaces, from.data(), to.data(), surface.strides});
+    if ((st_.kept & bit) && fields[f])
+      Exec::parallel_for(m, PendingFieldToSurface<T>{surfaces, static_cast<const T*>(fields[f]), to.data(),
+                                                     surface.strides});
+    ++f;
   });
 }
 

@@ -13,8 +13,11 @@
 // `origin` names its row, and moves with the particle (a re-sort or a
 // compaction gathers it as any field); particles that arrive from another
 // rank or from the host (insertion, restart) bring a row of (partner id,
-// springs) as messages and checkpoints hold it (width contact_slots), kept
-// verbatim in `pending` until the build; inserted particles have none.
+// springs) as messages and checkpoints hold it (width contact_slots): its
+// surface contacts go to the surface table at once, and its pair contacts
+// alone, in row order, wait in the `pending` table until the build (a CSR
+// table: a restart's rows of 12 or more slots hold a few touching pairs);
+// inserted particles have none.
 // At the build, once the cell list is built, each particle's touching
 // contacts are copied from its carried or pending row into the kept table
 // (ascending partner id; in the staging buffer: engine/pair_keep.hpp) and
@@ -26,8 +29,8 @@
 // particle (contact/contact_slots.hpp, `surface_slots` of them), which moves
 // with its particle as before. A particle's row for messages, checkpoints
 // and output (ContactRows) lists its touching pairs by ascending partner id,
-// then its surface slots in slot order; a pending row is given back as it
-// came.
+// then its surface slots in slot order; a pending row's pairs in the order
+// they came.
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
@@ -102,13 +105,15 @@ struct PairEntries {
 
 // The detached tables as kernels read them: per owned particle its origin
 // (a carried row, kPendingBase + a pending row, or none), the carried rows'
-// offsets, partner ids and touching flags, and the pending rows' partners.
+// offsets, partner ids and touching flags, and the pending rows' offsets and
+// partners.
 struct DetachedTables {
   const Index* origin;
   Index n_origin;
   const ListOffset* carried_begin;
   const Index* carried_partner;
   const std::uint8_t* carried_touching;
+  const ListOffset* pending_begin;
   const ParticleId* pending_partner;
 
   GS_HD Index origin_of(Index i) const { return i < n_origin ? origin[i] : kNoOrigin; }
@@ -122,6 +127,7 @@ struct PairHistory {
         carried_partner(b),
         carried(b),
         origin(b),
+        pending_begin(b),
         pending_partner(b),
         pending(b),
         kept_begin(b) {}
@@ -133,8 +139,9 @@ struct PairHistory {
   DeviceArray<Index> carried_partner;     // partner ids (as Index bits), ascending in each row
   PairEntries<Real> carried;
   DeviceArray<Index> origin;              // per owned particle (missing at the end: none)
-  DeviceArray<ParticleId> pending_partner;  // rows of `width` entries
-  PairEntries<Real> pending;                // the same rows' fields (touching unused)
+  DeviceArray<ListOffset> pending_begin;    // per pending row + 1 (none before the first arrival)
+  DeviceArray<ParticleId> pending_partner;  // the rows' pair contacts: partner ids
+  PairEntries<Real> pending;                // their fields (touching unused)
   Index pending_rows = 0;
   // During a build: the kept table's offsets, per owned particle + 1 (its
   // contacts lie in the staging buffer: engine/pair_keep.hpp).
@@ -148,6 +155,7 @@ struct PairHistory {
     carried_begin.discard();
     carried_partner.discard();
     origin.discard();
+    pending_begin.discard();
     pending_partner.discard();
     carried.touching.discard();
     pending.touching.discard();
@@ -159,13 +167,13 @@ struct PairHistory {
   }
 
   DetachedTables detached_tables() const {
-    return {origin.data(),          Index(origin.size()),    carried_begin.data(),
-            carried_partner.data(), carried.touching.data(), pending_partner.data()};
+    return {origin.data(),           Index(origin.size()), carried_begin.data(),   carried_partner.data(),
+            carried.touching.data(), pending_begin.data(), pending_partner.data()};
   }
 
   std::size_t bytes() const {
     return current.bytes() + carried_begin.bytes() + carried_partner.bytes() + carried.bytes() + origin.bytes() +
-           pending_partner.bytes() + pending.bytes() + kept_begin.bytes();
+           pending_begin.bytes() + pending_partner.bytes() + pending.bytes() + kept_begin.bytes();
   }
 };
 
@@ -211,8 +219,7 @@ enum ContactSource : int { kFromCurrent = 0, kFromCarried = 1, kFromPending = 2,
 
 // The contacts of owned particle i as one row of `width` entries: f(r,
 // source, at, partner) for entry r < width. Returns how many contacts there
-// are (more than width: those beyond are not visited). A pending row is
-// visited whole, empty entries included, as it arrived.
+// are (more than width: those beyond are not visited).
 struct ContactRows {
   int width;
   bool attached;
@@ -241,16 +248,10 @@ struct ContactRows {
     } else {
       const Index o = detached.origin_of(i);
       if (o >= kPendingBase) {
-        const std::size_t row = std::size_t(o - kPendingBase) * std::size_t(width);
-        int n = 0;
-        for (int s = 0; s < width; ++s) {
-          const ParticleId p = detached.pending_partner[row + std::size_t(s)];
-          f(s, kFromPending, row + std::size_t(s), p);
-          n += p != kNoPartner;
-        }
-        return n;
-      }
-      if (o >= 0)
+        const Index row = o - kPendingBase;
+        for (ListOffset c = detached.pending_begin[row]; c < detached.pending_begin[row + 1]; ++c)
+          put(kFromPending, std::size_t(c), detached.pending_partner[c]);
+      } else if (o >= 0)
         for (ListOffset c = detached.carried_begin[o]; c < detached.carried_begin[o + 1]; ++c)
           if (detached.carried_touching[c])
             put(kFromCarried, std::size_t(c), static_cast<ParticleId>(detached.carried_partner[c]));
@@ -322,35 +323,63 @@ struct PendingOrigins {
   GS_HD void operator()(Index k) const { origin[first + k] = kPendingBase + row0 + k; }
 };
 
-// Arriving rows: a packed slot-major block of m rows of `width` into pending
-// rows [row0, row0 + m).
-template <class T>
-struct RowsToPending {
-  const T* from;
-  T* to;
+// Arriving rows as they come: a packed slot-major block of m rows of
+// `width` (entry s of row k at s * m + k), partner ids and each field alike.
+struct ArrivingRows {
+  const ParticleId* partner;
   int width;
-  Index m, row0;
+  Index m;
+  GS_HD std::size_t at(Index k, int s) const { return std::size_t(s) * std::size_t(m) + std::size_t(k); }
+  GS_HD bool pair(std::size_t e) const { return partner[e] < kMeshPartnerBase; }  // not empty, not a surface
+  GS_HD bool surface(std::size_t e) const { return partner[e] != kNoPartner && partner[e] >= kMeshPartnerBase; }
+};
+
+// Row k's pair contacts counted into begin[k + 1], the pending entries
+// before the arrivals (`base`) added to the first (item 0 also sets begin[0]
+// = base), so that an in-place inclusive scan gives the arrivals' pending
+// offsets (PairHistory::pending_begin from row0 on).
+struct CountArrivingPairs {
+  ArrivingRows rows;
+  ListOffset* begin;
+  ListOffset base;
   GS_HD void operator()(Index k) const {
-    for (int s = 0; s < width; ++s)
-      to[(std::size_t(row0) + std::size_t(k)) * std::size_t(width) + std::size_t(s)] =
-          from[std::size_t(s) * std::size_t(m) + std::size_t(k)];
+    ListOffset n = k == 0 ? base : 0;
+    for (int s = 0; s < rows.width; ++s) n += rows.pair(rows.at(k, s)) ? 1 : 0;
+    if (k == 0) begin[0] = base;
+    begin[k + 1] = n;
   }
 };
 
-// The surface contacts (walls, mesh features) of pending row row0 + k into
-// the surface row of particle first + k, in row order: f(slot, row entry).
+// Row k's pair contacts of one array (partner ids or a field), in row order,
+// into its pending entries from begin[k] on.
+template <class T>
+struct PairsToPending {
+  ArrivingRows rows;
+  const T* from;
+  T* to;
+  const ListOffset* begin;
+  GS_HD void operator()(Index k) const {
+    ListOffset c = begin[k];
+    for (int s = 0; s < rows.width; ++s) {
+      const std::size_t e = rows.at(k, s);
+      if (rows.pair(e)) to[c++] = from[e];
+    }
+  }
+};
+
+// The surface contacts (walls, mesh features) of arriving row k into the
+// surface row of particle first + k, in row order: f(slot, block entry).
 struct PendingSurfaces {
-  const ParticleId* partner;  // pending rows
-  int width, slots;
-  Index row0, first;
+  ArrivingRows rows;
+  int slots;
+  Index first;
   const Index* row;  // the particles' surface rows
   template <class F>
   GS_HD int for_each(Index k, const F& f) const {
-    const std::size_t row = (std::size_t(row0) + std::size_t(k)) * std::size_t(width);
     int n = 0;
-    for (int s = 0; s < width && n < slots; ++s) {
-      const ParticleId p = partner[row + std::size_t(s)];
-      if (p != kNoPartner && p >= kMeshPartnerBase) f(n++, row + std::size_t(s));
+    for (int s = 0; s < rows.width && n < slots; ++s) {
+      const std::size_t e = rows.at(k, s);
+      if (rows.surface(e)) f(n++, e);
     }
     return n;
   }
@@ -386,12 +415,12 @@ struct PendingPartnersToSurface {
     const Index r = rows.row[rows.first + k];
     if (r == kNoSurfaceRow) return;
     const std::size_t i = std::size_t(r);
-    int n = rows.for_each(k, [&](int s, std::size_t e) { to[strides.at(s, i)] = rows.partner[e]; });
+    int n = rows.for_each(k, [&](int s, std::size_t e) { to[strides.at(s, i)] = rows.rows.partner[e]; });
     for (; n < rows.slots; ++n) to[strides.at(n, i)] = kNoPartner;
   }
 };
 
-// Their values of one field.
+// Their values of one field (from: the arriving block of that field).
 template <class T>
 struct PendingFieldToSurface {
   PendingSurfaces rows;
@@ -406,20 +435,16 @@ struct PendingFieldToSurface {
   }
 };
 
-// Whether pending row row0 + k holds more surface contacts than `slots`.
+// Whether arriving row k holds more surface contacts than `slots`.
 struct SurfaceOverflow {
-  const ParticleId* partner;
+  ArrivingRows rows;
   const ParticleId* id;  // of the arriving particles, at first + k
-  int width, slots;
-  Index row0, first;
+  int slots;
+  Index first;
   Fault* fault;
   GS_HD void operator()(Index k) const {
-    const std::size_t row = (std::size_t(row0) + std::size_t(k)) * std::size_t(width);
     int n = 0;
-    for (int s = 0; s < width; ++s) {
-      const ParticleId p = partner[row + std::size_t(s)];
-      n += p != kNoPartner && p >= kMeshPartnerBase;
-    }
+    for (int s = 0; s < rows.width; ++s) n += rows.surface(rows.at(k, s)) ? 1 : 0;
     if (n > slots) report_fault(fault, kFaultSurfaceSlotsExhausted, id[first + k], -1);
   }
 };

@@ -41,11 +41,9 @@ namespace gs {
 
 // The pair contacts of owned particle i in the detached tables, ascending
 // partner id: f(source, at, partner) with source kFromCarried (carried entry
-// `at`) or kFromPending (pending entry `at`). Surface contacts of a pending
-// row (already in the slot table) and empty entries are left out.
+// `at`) or kFromPending (pending entry `at`).
 struct DetachedContacts {
   DetachedTables tables;
-  int width;
   // Halved rows (above): the owned particles' ids, and only the contacts
   // with a partner of higher id are i's; null: every contact.
   const ParticleId* own_id = nullptr;
@@ -57,20 +55,20 @@ struct DetachedContacts {
     const Index o = tables.origin_of(i);
     int n = 0;
     if (o >= kPendingBase) {
-      // A row as it arrived: its entries in any order; a dozen, so a selection.
-      const std::size_t row = std::size_t(o - kPendingBase) * std::size_t(width);
+      // A row's pairs as they arrived, in any order; a few, so a selection.
+      const ListOffset first = tables.pending_begin[o - kPendingBase], end = tables.pending_begin[o - kPendingBase + 1];
       bool any = false;
       ParticleId last = 0;
       for (;;) {
-        int best = -1;
+        ListOffset best = end;
         ParticleId p_best = 0;
-        for (int s = 0; s < width; ++s) {
-          const ParticleId p = tables.pending_partner[row + std::size_t(s)];
-          if (p == kNoPartner || p >= kMeshPartnerBase || (any && p <= last) || !keeps(i, p)) continue;
-          if (best < 0 || p < p_best) best = s, p_best = p;
+        for (ListOffset c = first; c < end; ++c) {
+          const ParticleId p = tables.pending_partner[c];
+          if ((any && p <= last) || !keeps(i, p)) continue;
+          if (best == end || p < p_best) best = c, p_best = p;
         }
-        if (best < 0) return n;
-        f(int(kFromPending), row + std::size_t(best), p_best);
+        if (best == end) return n;
+        f(int(kFromPending), std::size_t(best), p_best);
         ++n;
         any = true;
         last = p_best;

@@ -109,10 +109,11 @@ inline std::size_t arrival_piece(std::size_t rows) {
 
 // Host rows of particles [first, first + rows) as arrivals (engine/pair_carry.hpp),
 // through packed slot-major blocks in backend memory in the force precision,
-// a piece of the rows at a time (arrival_piece): a restart's rows, 16 bytes a
-// slot, would otherwise stand in backend memory twice, as blocks and as the
-// pending table they are copied into (docs/PERFORMANCE.md, "A restart's
-// contact rows in pieces").
+// a piece of the rows at a time (arrival_piece): whole, a restart's rows
+// (16 bytes a slot, most of them empty) would stand in backend memory beside
+// the pending table their pair contacts go to (docs/PERFORMANCE.md, "A
+// restart's contact rows in pieces"); the table is reserved for the pair
+// contacts counted on the host.
 template <class Exec, class Real>
 void ParticleMover<Exec, Real>::arrive_from_host(const ParticleStore& s, Index first, const HostHistory& h) {
   const std::size_t slots = std::size_t(h.slots);
@@ -130,7 +131,9 @@ void ParticleMover<Exec, Real>::arrive_from_host(const ParticleStore& s, Index f
       for (std::size_t k = 0; k < slots; ++k) block[k * m + i] = T(rows[(c0 + i) * slots + k]);
     device.from_host(block);
   };
-  pairs_.reserve_arrivals(first, Index(count));
+  const auto pairs = std::count_if(h.partner.begin(), h.partner.end(),
+                                   [](ParticleId p) { return p < kMeshPartnerBase; });  // not empty, not a surface
+  pairs_.reserve_arrivals(first, Index(count), std::size_t(pairs));
   DeviceArray<ParticleId> partner(Exec::backend);
   ContactHistory<Real> fields;  // one block per kept field, in GS_HISTORY_FIELDS order
   for_each_history_field(fields, [&](const char*, unsigned, auto& device) {

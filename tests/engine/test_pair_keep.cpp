@@ -1,11 +1,12 @@
 // The kept table of a list rebuild (engine/pair_keep.hpp), against contacts
 // listed by hand: a particle's touching contacts come out of its carried row
-// in ascending partner id, and out of a pending row (as it arrived, in any
-// order, with surface contacts and empty entries) sorted by partner id with
-// the surface contacts and empties left out; the new list's entries then
-// find the springs of their partner, and zero where it did not touch. Each
-// pass also by groups of 1 to 8 host threads playing a GPU's lanes
-// (support/thread_lanes.hpp): the same tables.
+// in ascending partner id, and out of a pending row (an arrival's pair
+// contacts in the order they came: engine/pair_history.hpp) sorted by
+// partner id; the new list's entries then find the springs of their partner,
+// and zero where it did not touch. Each pass also by groups of 1 to 8 host
+// threads playing a GPU's lanes (support/thread_lanes.hpp): the same tables.
+// And the pending table itself: arriving rows leave their pair contacts
+// there and their surface contacts to the surface table.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -20,9 +21,29 @@
 namespace gs::test {
 namespace {
 
+// m arriving rows of `width`, a slot-major block (entry s of row k at s * m
+// + k, as PairCarry::arrive takes them), appended to a pending table.
+template <class T>
+void pend(std::vector<ListOffset>& begin, std::vector<ParticleId>& partner, std::vector<T>& field,
+          const std::vector<ParticleId>& rows, const std::vector<T>& values, int width) {
+  const Index m = Index(rows.size()) / width;
+  const ArrivingRows arriving{rows.data(), width, m};
+  const Index row0 = begin.empty() ? 0 : Index(begin.size()) - 1;
+  begin.resize(std::size_t(row0 + m) + 1);
+  ListOffset* at = begin.data() + row0;
+  CpuExec::parallel_for(m, CountArrivingPairs{arriving, at, ListOffset(partner.size())});
+  DeviceArray<unsigned char> scratch(Backend::cpu);
+  const ListOffset total = CpuExec::scan_counts(at, m, scratch, "the test's pending rows");
+  partner.resize(total);
+  field.resize(total);
+  CpuExec::parallel_for(m, PairsToPending<ParticleId>{arriving, rows.data(), partner.data(), at});
+  CpuExec::parallel_for(m, PairsToPending<T>{arriving, values.data(), field.data(), at});
+}
+
 // Three owned particles: 0 from carried row 1, 1 from pending row 0, 2 new.
-// Carried row 1 lists partners 3, 5, 8, 9 (5 and 9 not touching); the pending
-// row (width 5) holds partner 7, a wall, 4, an empty entry and partner 6.
+// Carried row 1 lists partners 3, 5, 8, 9 (5 and 9 not touching); the row
+// that arrived (width 5) held partner 7, a wall, 4, an empty entry and
+// partner 6, of which the pending table keeps 7, 4 and 6.
 struct Detached {
   std::vector<Index> origin{1, kPendingBase + 0};  // particle 2 has none (beyond)
   std::vector<ListOffset> carried_begin{0, 2, 6};
@@ -30,13 +51,22 @@ struct Detached {
   std::vector<std::uint8_t> carried_touching{1, 1, 1, 0, 1, 0};
   std::vector<float> carried_spring{-1, -2, 30, 0, 80, 0};  // a scalar field (peak_overlap's place)
   std::vector<Vec3f> carried_tangential{{-1, 0, 0}, {-2, 0, 0}, {3, 1, 0}, {}, {8, 0, 1}, {}};
-  std::vector<ParticleId> pending_partner{7, kWallPartnerBase + 2, 4, kNoPartner, 6};
-  std::vector<float> pending_spring{70, 99, 40, 0, 60};
-  std::vector<Vec3f> pending_tangential{{7, 0, 0}, {9, 9, 9}, {4, 0, 0}, {}, {6, 0, 0}};
+  std::vector<ListOffset> pending_begin;
+  std::vector<ParticleId> pending_partner;
+  std::vector<float> pending_spring;
+  std::vector<Vec3f> pending_tangential;
+  Detached() {
+    const std::vector<ParticleId> row{7, kWallPartnerBase + 2, 4, kNoPartner, 6};
+    std::vector<ListOffset> begin;
+    std::vector<ParticleId> partner;
+    pend(pending_begin, pending_partner, pending_spring, row, {70, 99, 40, 0, 60}, 5);
+    pend(begin, partner, pending_tangential, row, {{7, 0, 0}, {9, 9, 9}, {4, 0, 0}, {}, {6, 0, 0}}, 5);
+  }
   DetachedContacts contacts() const {
-    const DetachedTables tables{origin.data(),          Index(origin.size()),    carried_begin.data(),
-                                carried_partner.data(), carried_touching.data(), pending_partner.data()};
-    return {tables, 5};
+    const DetachedTables tables{origin.data(),           Index(origin.size()), carried_begin.data(),
+                                carried_partner.data(),  carried_touching.data(), pending_begin.data(),
+                                pending_partner.data()};
+    return {tables};
   }
 };
 
@@ -253,6 +283,41 @@ TEST(PairKeep, ListEntriesBecomeIds) {
     const ListToIds to_ids{begin.data(), entries.data(), id.data()};
     for (Index i = 0; i < 3; ++i) run_lanes(lanes, [&](const ThreadLane& g) { to_ids.in_group(i, g); });
     EXPECT_EQ(entries, want) << lanes << " lanes";
+  }
+}
+
+// Arriving rows (slot-major blocks, two arrivals one after the other) leave
+// only their pair contacts in the pending table, in row order, each arrival's
+// after those pending before it; their surface contacts (a wall, a mesh
+// feature) are the surface table's, at most `slots` of them a row.
+TEST(PairKeep, ArrivingRowsLeaveTheirPairContactsPending) {
+  const ParticleId wall = kWallPartnerBase + 1, mesh = kMeshPartnerBase + 5, other = kWallPartnerBase + 3;
+  // Rows (width 3) of the first arrival: {9, wall, 2}, {empty, empty, empty};
+  // of the second: {mesh, 5, other wall}, {8, 6, wall}.
+  const std::vector<ParticleId> first{9, kNoPartner, wall, kNoPartner, 2, kNoPartner};
+  const std::vector<float> first_spring{90, 0, -1, 0, 20, 0};
+  const std::vector<ParticleId> second{mesh, 8, 5, 6, other, wall};
+  const std::vector<float> second_spring{-2, 80, 50, 60, -4, -3};
+  std::vector<ListOffset> begin;
+  std::vector<ParticleId> partner;
+  std::vector<float> spring;
+  pend(begin, partner, spring, first, first_spring, 3);
+  pend(begin, partner, spring, second, second_spring, 3);
+  EXPECT_EQ(begin, (std::vector<ListOffset>{0, 2, 2, 3, 5}));
+  EXPECT_EQ(partner, (std::vector<ParticleId>{9, 2, 5, 8, 6}));
+  EXPECT_EQ(spring, (std::vector<float>{90, 20, 50, 80, 60}));
+  // The second arrival's surface contacts, each row's in row order: slot
+  // and block entry; with one slot a row, the first row's mesh alone fits.
+  for (int slots : {1, 4}) {
+    const PendingSurfaces surfaces{ArrivingRows{second.data(), 3, 2}, slots, 0, nullptr};
+    std::vector<std::vector<ParticleId>> got(2);
+    for (Index k = 0; k < 2; ++k)
+      surfaces.for_each(k, [&](int s, std::size_t e) {
+        EXPECT_EQ(std::size_t(s), got[std::size_t(k)].size());
+        got[std::size_t(k)].push_back(second[e]);
+      });
+    const std::vector<ParticleId> row0 = slots == 1 ? std::vector<ParticleId>{mesh} : std::vector<ParticleId>{mesh, other};
+    EXPECT_EQ(got, (std::vector<std::vector<ParticleId>>{row0, {wall}})) << slots << " slots";
   }
 }
 
