@@ -130,7 +130,9 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   // the carried table is still held, and are merged into the new list's
   // entries and springs, which replace the carried table's, once the cell
   // list is gone; without history the new list's entries come beside the
-  // cell order.
+  // cell order. (A GPU that finds the neighbours in one pass holds their
+  // rows only in the room of the carried table's springs less the cells:
+  // NeighbourFinder::staged_width; no phase above these.)
   const bool history = fields_kept != 0;
   const double origin = history ? sizeof(Index) : 0, order = sizeof(Index);
   auto build_peak = [&](double sort_buffers, double freed_per_entry) {

@@ -19,11 +19,14 @@ namespace gs {
 // describes the store it was built on, unless the store changed since), when
 // a new one is about to be built (the cell list is built: the staging buffer
 // is free until the new list is) and when it is built: the pair history
-// (engine/pair_carry.hpp) keeps its springs per list entry.
+// (engine/pair_carry.hpp) keeps its springs per list entry. Its tables take
+// entry_bytes() per entry; it frees them before the new list is built and
+// allocates them anew once it is.
 struct ListFollower {
   virtual void list_replacing(const ParticleStore& s) = 0;
   virtual void list_building(const ParticleStore& s) = 0;
   virtual void list_built(const ParticleStore& s) = 0;
+  virtual std::size_t entry_bytes() const = 0;
 
  protected:
   ~ListFollower() = default;
@@ -63,8 +66,10 @@ class NeighbourFinder final : public NeighbourSearch {
     if constexpr (Exec::verlet_list) {
       scratch_.discard();
       if (follower_) follower_->list_building(s);
+      if constexpr (Exec::backend == Backend::cuda) verlet_.staged_width = staged_width(s);
       build_verlet_list<Exec>(verlet_, cells_, s.position.data(), s.radius.data(), s.id.data(), s.n_owned, s.size(),
                               skin);
+      last_entries_ = verlet_.list.size();
       cells_.discard();
       split_by_ghosts(s);
       built_at_ = s.revision;
@@ -167,8 +172,20 @@ class NeighbourFinder final : public NeighbourSearch {
     split_.order = order;
   }
 
+  // A GPU build's rows in one pass (staged_list_width) take the room of the
+  // follower's tables of the last list, which the follower has freed and
+  // allocates anew once this list is built, less the cell list held beside
+  // the rows: so they raise neither the peak of the phase that kept the
+  // contacts (which held those tables and the cells) nor that of the merge.
+  int staged_width(const ParticleStore& s) const {
+    const std::size_t tables = follower_ ? follower_->entry_bytes() * last_entries_ : 0;
+    const std::size_t cells = cells_.bytes();
+    return staged_list_width(tables > cells ? tables - cells : 0, last_entries_, std::size_t(s.n_owned));
+  }
+
   CellList cells_;
   VerletList verlet_;  // empty where Exec::verlet_list is false
+  std::size_t last_entries_ = 0;  // the last list's entries
   DeviceArray<Index> split_order_;  // GhostSplit::order's storage
   GhostSplit split_;
   DeviceArray<unsigned char>& scratch_;

@@ -35,6 +35,15 @@ class PairCarry final : public StoreObserver, public ListFollower {
   void list_replacing(const ParticleStore& s) override { detach(s); }
   void list_building(const ParticleStore& s) override;
   void list_built(const ParticleStore& s) override;
+  // A touching flag and the kept fields per entry (0 without history).
+  std::size_t entry_bytes() const override {
+    if (!st_.keeps_history()) return 0;
+    std::size_t bytes = sizeof(std::uint8_t);
+    for_each_history_field(st_.pairs.current, [&](const char*, unsigned bit, const auto& a) {
+      if (st_.kept & bit) bytes += sizeof(typename std::decay_t<decltype(a)>::value_type);
+    });
+    return bytes;
+  }
 
   // Detached: every owned particle [0, n) has an origin (none where it had not).
   void ensure_origin(Index n) {

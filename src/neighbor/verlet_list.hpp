@@ -29,12 +29,18 @@
 // docs/PERFORMANCE.md).
 // The GPU builds it in two passes over the cells (count; a scan turns the
 // counts into offsets; fill and sort each particle's entries in place:
-// ListPass); only the total comes back to the host, to size the list.
+// ListPass); only the total comes back to the host, to size the list. Where
+// a build may hold rows of a fixed width per particle (staged_list_width),
+// one pass over the cells writes each particle's neighbours into its row
+// while it counts them, and after the scan the rows are copied into place
+// (ListPlace); only a particle with more neighbours than the row holds
+// passes over its cells again.
 //
 // Its staleness is read one step late, so that the host never waits for
 // the device inside a step (ListWatch below; docs/DESIGN.md, "The step's
 // data flow"); with ranks it is each rank's part of the halo's vote
 // (RankExchange::halo_stale), whose rebuild rebuilds the list.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <type_traits>
@@ -87,6 +93,7 @@ struct VerletList {
   DeviceArray<unsigned char> scan_scratch;  // the count scan's (GPU), sized at its first use
   double skin = 0;
   int lanes_setting = 1;  // GPU lanes per particle of the build's passes: force_lanes_setting() (0: by size)
+  int staged_width = 0;   // GPU: the rows' width of a build in one pass (staged_list_width); 0: two passes
   Index n_owned = 0, n_total = 0;  // the store's layout at the build
   bool valid = false;
 
@@ -229,17 +236,22 @@ struct ListWatch {
   }
 };
 
-// One pass of the GPU's build over owned particle i: its neighbours counted
-// into begin[i + 1] (Fill false; item 0 also sets begin[0] = 0), or, after
-// the scan of the counts into offsets, written to list[begin[i],
-// begin[i + 1]) and ordered by ascending id (Fill true). A small scene gives
-// each particle a group of lanes (in_group), as its force kernel does: lane
-// r tests candidates r, r + size, ... of each run of cells, and the
-// neighbours of a round are written in candidate order, after those of the
-// lanes before them; the leader orders them once all are written. The order
-// by id makes the list the one a thread alone writes. Elsewhere a particle
-// is one lane's.
-template <bool Fill>
+// What a pass of the GPU's build over the cells does (ListPass).
+enum class ListPassKind {
+  count,  // the neighbours counted into begin[i + 1] (item 0 also sets begin[0] = 0)
+  fill,   // after the scan, written to list[begin[i], begin[i + 1]) and ordered by id
+  stage,  // counted, as `count`, and the first `width` written to the particle's
+          // row of `width` (list + i * width), ordered by id where they all fit
+};
+
+// One pass of the GPU's build over owned particle i (ListPassKind). A small
+// scene gives each particle a group of lanes (in_group), as its force kernel
+// does: lane r tests candidates r, r + size, ... of each run of cells, and
+// the neighbours of a round are written in candidate order, after those of
+// the lanes before them; the leader orders them once all are written. The
+// order by id makes the list the one a thread alone writes. Elsewhere a
+// particle is one lane's.
+template <ListPassKind Kind>
 struct ListPass {
   // A launch hint: 8 blocks of 128 threads a multiprocessor hold the passes
   // to 64 registers (77 at 4 blocks). They wait on latency, not memory, so
@@ -248,36 +260,81 @@ struct ListPass {
   static constexpr int kMinBlocksPerSM = 8;
   CellCandidates cells;
   WithinSkin near;
-  const ParticleId* id;  // Fill only
+  const ParticleId* id;  // fill and stage
   ListOffset* begin;
-  Index* list;  // Fill only
+  Index* list;    // fill: the list; stage: the rows
+  int width = 0;  // stage: the rows' width
   GS_HD void operator()(Index i) const { in_group(i, OneLane{}); }
 
   template <class Group>
   GS_HD void in_group(Index i, const Group& g) const {
+    constexpr bool kFill = Kind == ListPassKind::fill, kStage = Kind == ListPassKind::stage;
     const Vec3d xi = near.position[i];
-    ListOffset k = Fill ? begin[i] : 0;
+    Index* out = kStage ? list + std::size_t(i) * std::size_t(width) : list;
+    ListOffset k = kFill ? begin[i] : 0;
     auto run = [&](Index first, Index end) {
       for (Index round = first; round < end; round += Index(g.size)) {
         const Index c = round + Index(g.rank);
         const bool hit = c < end && near(i, cells.sorted[c], xi);
         const unsigned votes = g.ballot(hit);
-        if constexpr (Fill) {
-          if (hit) list[k + ListOffset(bit_count(votes & ((1u << g.rank) - 1u)))] = cells.sorted[c];
+        if constexpr (Kind != ListPassKind::count) {
+          const ListOffset at = k + ListOffset(bit_count(votes & ((1u << g.rank) - 1u)));
+          if (hit && (!kStage || at < ListOffset(width))) out[at] = cells.sorted[c];
         }
         k += ListOffset(bit_count(votes));
       }
     };
     cells.for_each_run(xi, run);
-    if constexpr (Fill) {
+    if constexpr (kFill) {
       g.sync();
       if (g.leader()) sort_by_id(list + begin[i], Index(k - begin[i]), id);
-    } else if (g.leader()) {
+      return;
+    }
+    if constexpr (kStage) {
+      g.sync();
+      if (g.leader() && k <= ListOffset(width)) sort_by_id(out, Index(k), id);
+    }
+    if (g.leader()) {
       if (i == 0) begin[0] = 0;
       begin[i + 1] = k;
     }
   }
 };
+
+// After a staged pass and the scan: owned particle i's row copied to
+// list[begin[i], begin[i + 1]), or, where its neighbours outnumbered the
+// row, found again by a pass of its own over its cells (`fill`).
+struct ListPlace {
+  static constexpr int kMinBlocksPerSM = ListPass<ListPassKind::fill>::kMinBlocksPerSM;
+  ListPass<ListPassKind::fill> fill;
+  const Index* rows;
+  int width;
+  GS_HD void operator()(Index i) const { in_group(i, OneLane{}); }
+
+  template <class Group>
+  GS_HD void in_group(Index i, const Group& g) const {
+    const ListOffset first = fill.begin[i], n = fill.begin[i + 1] - first;
+    if (n > ListOffset(width)) {
+      fill.in_group(i, g);
+      return;
+    }
+    const Index* row = rows + std::size_t(i) * std::size_t(width);
+    for (ListOffset r = ListOffset(g.rank); r < n; r += ListOffset(g.size)) fill.list[first + r] = row[r];
+  }
+};
+
+// The rows' width of a GPU build in one pass (ListPassKind::stage), given
+// the bytes the rows may take (`room`: what the build has freed and does
+// not hold again until the new list is built) and the old list's entries
+// among n particles: 0 (two passes) unless the rows hold twice the old
+// mean and more (at most kMaxStagedWidth), so that few particles pass over
+// their cells again.
+constexpr int kMaxStagedWidth = 32;
+inline int staged_list_width(std::size_t room, std::size_t old_entries, std::size_t n) {
+  if (n == 0 || old_entries == 0) return 0;
+  const std::size_t width = std::min(room / (n * sizeof(Index)), std::size_t(kMaxStagedWidth));
+  return width >= 2 * old_entries / n + 1 ? int(width) : 0;
+}
 
 // The reverse entries of owned particle i's row (VerletList::reverse). The
 // list is symmetric among owned particles (WithinSkin is: the separation

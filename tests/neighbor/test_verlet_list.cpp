@@ -160,8 +160,8 @@ TEST(VerletList, GpuPassesInLaneGroupsWriteTheListOfOneThread) {
   const WithinSkin near{b.position.data(), b.radius.data(), skin, grid.box};
   std::vector<ListOffset> begin(std::size_t(n) + 1, 0);
   std::vector<Index> list(expected.size(), -1);
-  const ListPass<false> count{cells, near, b.id.data(), begin.data(), nullptr};
-  const ListPass<true> fill{cells, near, b.id.data(), begin.data(), list.data()};
+  const ListPass<ListPassKind::count> count{cells, near, b.id.data(), begin.data(), nullptr};
+  const ListPass<ListPassKind::fill> fill{cells, near, b.id.data(), begin.data(), list.data()};
   for (Index i = 0; i < n; ++i) count(i);  // one thread a sphere
   for (Index i = 0; i < n; ++i) begin[std::size_t(i) + 1] += begin[std::size_t(i)];
   ASSERT_EQ(begin, expected_begin);
@@ -183,6 +183,54 @@ TEST(VerletList, GpuPassesInLaneGroupsWriteTheListOfOneThread) {
                              expected.begin() + std::ptrdiff_t(row)))
           << lanes << " lanes, sphere " << i;
     }
+
+  // In one pass: rows of 16 hold every sphere's neighbours (up to 14 here),
+  // rows of 7 not all of them (those spheres pass over their cells again in
+  // ListPlace); by one thread a sphere, then by groups of lanes for every
+  // 13th sphere, the same list.
+  for (int width : {16, 7}) {
+    std::vector<Index> rows(std::size_t(n) * std::size_t(width), -1);
+    const ListPass<ListPassKind::stage> stage{cells, near, b.id.data(), begin.data(), rows.data(), width};
+    const ListPlace place{fill, rows.data(), width};
+    std::fill(begin.begin(), begin.end(), 12345);
+    std::fill(list.begin(), list.end(), -1);
+    int beyond = 0;
+    for (Index i = 0; i < n; ++i) stage(i);
+    for (Index i = 0; i < n; ++i) {
+      beyond += begin[std::size_t(i) + 1] > ListOffset(width);
+      begin[std::size_t(i) + 1] += begin[std::size_t(i)];
+    }
+    ASSERT_EQ(begin, expected_begin) << "rows of " << width;
+    for (Index i = 0; i < n; ++i) place(i);
+    EXPECT_EQ(list, expected) << "rows of " << width;
+    EXPECT_EQ(beyond > 0, width == 7) << "spheres beyond rows of " << width << ": " << beyond;
+    for (int lanes : {2, 8, 32})
+      for (Index i = 0; i < n; i += 13) {
+        const std::size_t row = std::size_t(expected_begin[std::size_t(i)]);
+        const std::size_t end = std::size_t(expected_begin[std::size_t(i) + 1]);
+        begin[std::size_t(i) + 1] = 12345;
+        test::run_lanes(lanes, [&](const test::ThreadLane& lane) { stage.in_group(i, lane); });
+        EXPECT_EQ(begin[std::size_t(i) + 1], ListOffset(end - row)) << width << ", " << lanes << " lanes, sphere " << i;
+        begin[std::size_t(i) + 1] = expected_begin[std::size_t(i) + 1];
+        std::fill(list.begin() + std::ptrdiff_t(row), list.begin() + std::ptrdiff_t(end), -1);
+        test::run_lanes(lanes, [&](const test::ThreadLane& lane) { place.in_group(i, lane); });
+        EXPECT_TRUE(std::equal(list.begin() + std::ptrdiff_t(row), list.begin() + std::ptrdiff_t(end),
+                               expected.begin() + std::ptrdiff_t(row)))
+            << "rows of " << width << ", " << lanes << " lanes, sphere " << i;
+      }
+  }
+}
+
+// A build in one pass takes rows as wide as the room allows, up to 32, and
+// only where they hold at least twice the old list's mean and one more.
+TEST(VerletList, StagedRowsFitTheRoomAndTwiceTheMean) {
+  const std::size_t n = 1000;
+  EXPECT_EQ(staged_list_width(20 * n * 4, 6 * n, n), 20);
+  EXPECT_EQ(staged_list_width(100 * n * 4, 6 * n, n), kMaxStagedWidth);
+  EXPECT_EQ(staged_list_width(13 * n * 4, 6 * n, n), 13);
+  EXPECT_EQ(staged_list_width(12 * n * 4, 6 * n, n), 0);  // twice the mean and one more: 13
+  EXPECT_EQ(staged_list_width(100 * n * 4, 0, n), 0);     // no old list: two passes
+  EXPECT_EQ(staged_list_width(0, 6 * n, n), 0);
 }
 
 // The list keeps the positions it was built on; the kick-drift's check

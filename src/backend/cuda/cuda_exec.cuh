@@ -185,10 +185,12 @@ struct CudaExec {
   }
 
   // Fills v.begin and v.list: the neighbours of particles [0, n_owned) among
-  // `cells`, each particle's in ascending id. Two passes over the cells
-  // (count, fill; ListPass, with as many lanes per particle as the forces
-  // take) around an in-place inclusive scan of the counts; the total comes
-  // back to the host to size the list.
+  // `cells`, each particle's in ascending id (ListPass, with as many lanes
+  // per particle as the forces take). Where v.staged_width allows, one pass
+  // over the cells into rows of that width, an in-place inclusive scan of
+  // the counts, and the rows copied into place (ListPlace); else two passes
+  // (count, fill) around the scan. The total comes back to the host to size
+  // the list.
   static void fill_verlet_list(VerletList& v, const CellCandidates& cells, const WithinSkin& near,
                                const ParticleId* id, Index n_owned) {
     v.begin.resize(std::size_t(n_owned) + 1);
@@ -198,10 +200,20 @@ struct CudaExec {
       v.list.resize(0);
       return;
     }
-    parallel_for_lanes(n_owned, v.lanes_setting, ListPass<false>{cells, near, id, begin, nullptr});
+    const int width = v.staged_width;
+    DeviceArray<Index> rows(backend);
+    if (width > 0) {
+      rows.resize_discarding(std::size_t(n_owned) * std::size_t(width));
+      parallel_for_lanes(n_owned, v.lanes_setting,
+                         ListPass<ListPassKind::stage>{cells, near, id, begin, rows.data(), width});
+    } else {
+      parallel_for_lanes(n_owned, v.lanes_setting, ListPass<ListPassKind::count>{cells, near, id, begin, nullptr});
+    }
     const ListOffset total = scan_counts(begin, n_owned, v.scan_scratch, "the Verlet list");
     v.list.resize_discarding(std::size_t(total));  // rewritten whole: no copy of the old
-    parallel_for_lanes(n_owned, v.lanes_setting, ListPass<true>{cells, near, id, begin, v.list.data()});
+    const ListPass<ListPassKind::fill> fill{cells, near, id, begin, v.list.data()};
+    if (width > 0) parallel_for_lanes(n_owned, v.lanes_setting, ListPlace{fill, rows.data(), width});
+    else parallel_for_lanes(n_owned, v.lanes_setting, fill);
   }
 
   static void synchronize() { GS_CUDA_CHECK(cudaDeviceSynchronize()); }
