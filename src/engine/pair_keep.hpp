@@ -34,6 +34,7 @@
 #include "contact/pair_springs.hpp"
 #include "core/bits.hpp"
 #include "core/one_lane.hpp"
+#include "core/partition_point.hpp"
 #include "engine/pair_history.hpp"
 #include "neighbor/verlet_list.hpp"
 
@@ -255,13 +256,9 @@ struct MergeKept {
 
   // The entry of particle j's kept row that names `partner`, or kNoEntry.
   GS_HD ListOffset find_kept(Index j, ParticleId partner) const {
-    ListOffset lo = kept_begin[j], hi = kept_begin[j + 1];
-    while (lo < hi) {
-      const ListOffset mid = lo + (hi - lo) / 2;
-      if (kept_partner[mid] < partner) lo = mid + 1;
-      else hi = mid;
-    }
-    return lo < kept_begin[j + 1] && kept_partner[lo] == partner ? lo : kNoEntry;
+    const ListOffset end = kept_begin[j + 1];
+    const ListOffset at = partition_point(kept_begin[j], end, [&](ListOffset k) { return kept_partner[k] < partner; });
+    return at < end && kept_partner[at] == partner ? at : kNoEntry;
   }
 };
 

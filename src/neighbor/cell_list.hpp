@@ -11,6 +11,7 @@
 #include <type_traits>
 
 #include "backend/device_array.hpp"
+#include "core/partition_point.hpp"
 #include "core/types.hpp"
 #include "neighbor/cell_grid.hpp"
 
@@ -92,13 +93,7 @@ struct CellBeginsByCell {
   int id_bits;  // CellKeys'
   GS_HD void operator()(Index c) const {
     const Key first_key = Key(Key(c) << id_bits);
-    Index lo = 0, hi = n;
-    while (lo < hi) {
-      const Index mid = lo + (hi - lo) / 2;
-      if (keys[mid] < first_key) lo = mid + 1;
-      else hi = mid;
-    }
-    cell_begin[c] = lo;
+    cell_begin[c] = partition_point(Index(0), n, [&](Index k) { return keys[k] < first_key; });
   }
 };
 

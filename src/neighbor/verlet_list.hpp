@@ -50,6 +50,7 @@
 #include "core/bits.hpp"
 #include "core/fault.hpp"
 #include "core/one_lane.hpp"
+#include "core/partition_point.hpp"
 #include "core/types.hpp"
 #include "core/vec3.hpp"
 #include "neighbor/cell_list.hpp"
@@ -355,13 +356,9 @@ struct ReverseEntryKernel {
     }
   }
   GS_HD ListOffset entry_naming(Index j, Index i) const {
-    ListOffset lo = begin[j], hi = begin[j + 1];
-    while (lo < hi) {
-      const ListOffset mid = lo + (hi - lo) / 2;
-      if (id[list[mid]] < id[i]) lo = mid + 1;
-      else hi = mid;
-    }
-    return lo < begin[j + 1] && list[lo] == i ? lo : kNoEntry;
+    const ListOffset end = begin[j + 1];
+    const ListOffset at = partition_point(begin[j], end, [&](ListOffset k) { return id[list[k]] < id[i]; });
+    return at < end && list[at] == i ? at : kNoEntry;
   }
 };
 

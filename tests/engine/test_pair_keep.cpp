@@ -316,8 +316,10 @@ TEST(PairKeep, ArrivingRowsLeaveTheirPairContactsPending) {
         EXPECT_EQ(std::size_t(s), got[std::size_t(k)].size());
         got[std::size_t(k)].push_back(second[e]);
       });
-    const std::vector<ParticleId> row0 = slots == 1 ? std::vector<ParticleId>{mesh} : std::vector<ParticleId>{mesh, other};
-    EXPECT_EQ(got, (std::vector<std::vector<ParticleId>>{row0, {wall}})) << slots << " slots";
+    const std::vector<std::vector<ParticleId>> want =
+        slots == 1 ? std::vector<std::vector<ParticleId>>{{mesh}, {wall}}
+                   : std::vector<std::vector<ParticleId>>{{mesh, other}, {wall}};
+    EXPECT_EQ(got, want) << slots << " slots";
   }
 }
 
