@@ -18,6 +18,9 @@ constexpr ParticleId kWallPartnerBase = 0xFFFFFF00u;  // wall w is partner kWall
 constexpr ParticleId kMeshPartnerBase = 0xC0000000u;
 constexpr std::int32_t kMaxMeshFeatures = 1 << 28;  // triangles, edges and vertices of all meshes, each
 constexpr ParticleId kMaxParticleId = kMeshPartnerBase - 1;
+// Whether a history entry's partner is a particle: not empty (kNoPartner),
+// not a wall or mesh feature.
+constexpr bool names_particle(ParticleId partner) { return partner <= kMaxParticleId; }
 constexpr int kMaxWalls = 255;
 constexpr int kMaxContactSlots = 32;  // one bit per slot in a 32-bit mask
 

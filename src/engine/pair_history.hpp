@@ -330,8 +330,8 @@ struct ArrivingRows {
   int width;
   Index m;
   GS_HD std::size_t at(Index k, int s) const { return std::size_t(s) * std::size_t(m) + std::size_t(k); }
-  GS_HD bool pair(std::size_t e) const { return partner[e] < kMeshPartnerBase; }  // not empty, not a surface
-  GS_HD bool surface(std::size_t e) const { return partner[e] != kNoPartner && partner[e] >= kMeshPartnerBase; }
+  GS_HD bool pair(std::size_t e) const { return names_particle(partner[e]); }
+  GS_HD bool surface(std::size_t e) const { return partner[e] != kNoPartner && !names_particle(partner[e]); }
 };
 
 // Row k's pair contacts counted into begin[k + 1], the pending entries

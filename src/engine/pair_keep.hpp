@@ -57,7 +57,8 @@ struct DetachedContacts {
     int n = 0;
     if (o >= kPendingBase) {
       // A row's pairs as they arrived, in any order; a few, so a selection.
-      const ListOffset first = tables.pending_begin[o - kPendingBase], end = tables.pending_begin[o - kPendingBase + 1];
+      const Index row = o - kPendingBase;
+      const ListOffset first = tables.pending_begin[row], end = tables.pending_begin[row + 1];
       bool any = false;
       ParticleId last = 0;
       for (;;) {

@@ -131,8 +131,7 @@ void ParticleMover<Exec, Real>::arrive_from_host(const ParticleStore& s, Index f
       for (std::size_t k = 0; k < slots; ++k) block[k * m + i] = T(rows[(c0 + i) * slots + k]);
     device.from_host(block);
   };
-  const auto pairs = std::count_if(h.partner.begin(), h.partner.end(),
-                                   [](ParticleId p) { return p < kMeshPartnerBase; });  // not empty, not a surface
+  const auto pairs = std::count_if(h.partner.begin(), h.partner.end(), names_particle);
   pairs_.reserve_arrivals(first, Index(count), std::size_t(pairs));
   DeviceArray<ParticleId> partner(Exec::backend);
   ContactHistory<Real> fields;  // one block per kept field, in GS_HISTORY_FIELDS order
