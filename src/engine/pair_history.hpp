@@ -177,6 +177,16 @@ struct PairHistory {
   }
 };
 
+// Lanes per particle of a build's passes over the rows of the pair tables
+// on a GPU (Exec::parallel_for_lanes; ListToIds here, engine/pair_keep.hpp):
+// lane r takes entries r, r + 8, ... of its particle's row, so a warp's
+// reads and writes of the tables are runs of consecutive entries, not one
+// row per lane 16-72 bytes apart (docs/PERFORMANCE.md, "A rebuild's copies
+// by groups of lanes"). Rows are a few to a few dozen entries.
+constexpr int kRowLanes = 8;
+// A launch hint, as the force kernel's (the passes need few registers).
+constexpr int kRowPassBlocksPerSM = 4;
+
 // The old list's entries of owned particle i, from store indices to ids; on
 // a GPU by a group of kRowLanes lanes.
 struct ListToIds {

@@ -302,22 +302,9 @@ struct ListPass {
   }
 };
 
-// Lanes per particle of a build's passes over rows (the Verlet list's rows
-// copied into place here; the pair tables' rows: engine/pair_history.hpp,
-// engine/pair_keep.hpp) on a GPU (Exec::parallel_for_lanes): lane r takes
-// entries r, r + 8, ... of its particle's row, so a warp's reads and writes
-// are runs of consecutive entries, not one row per lane 16-128 bytes apart
-// (docs/PERFORMANCE.md, "A rebuild's copies by groups of lanes"). Rows are a
-// few to a few dozen entries.
-constexpr int kRowLanes = 8;
-// A launch hint, as the force kernel's (the passes need few registers).
-constexpr int kRowPassBlocksPerSM = 4;
-
 // After a staged pass and the scan: owned particle i's row copied to
 // list[begin[i], begin[i + 1]), or, where its neighbours outnumbered the
-// row, found again by a pass of its own over its cells (`fill`, by the same
-// lanes). On a GPU by kRowLanes lanes a particle, whatever the passes over
-// the cells take.
+// row, found again by a pass of its own over its cells (`fill`).
 struct ListPlace {
   static constexpr int kMinBlocksPerSM = ListPass<ListPassKind::fill>::kMinBlocksPerSM;
   ListPass<ListPassKind::fill> fill;

@@ -90,8 +90,8 @@ struct CudaExec {
   // f over [0, n) with force_lanes(n, setting) lanes per i (F::in_group), or
   // one thread each (parallel_for) where that is one lane: a scene too small
   // to fill the GPU lasts as long as its longest particle, whose work its lanes share.
-  // A setting of 1-32 fixes the lanes (neighbor/verlet_list.hpp, kRowLanes:
-  // passes over rows, for coalesced reads and writes).
+  // A setting of 1-32 fixes the lanes (engine/pair_history.hpp, kRowLanes:
+  // the rows of the pair tables, for coalesced reads and writes).
   template <class F>
   static void parallel_for_lanes(Index n, int setting, const F& f) {
     const int lanes = force_lanes(n, setting);
@@ -212,7 +212,7 @@ struct CudaExec {
     const ListOffset total = scan_counts(begin, n_owned, v.scan_scratch, "the Verlet list");
     v.list.resize_discarding(std::size_t(total));  // rewritten whole: no copy of the old
     const ListPass<ListPassKind::fill> fill{cells, near, id, begin, v.list.data()};
-    if (width > 0) parallel_for_lanes(n_owned, kRowLanes, ListPlace{fill, rows.data(), width});
+    if (width > 0) parallel_for_lanes(n_owned, v.lanes_setting, ListPlace{fill, rows.data(), width});
     else parallel_for_lanes(n_owned, v.lanes_setting, fill);
   }
 
