@@ -40,13 +40,7 @@ RunRequest parse_run_args(const std::vector<std::string>& args) {
 int command_run(const std::vector<std::string>& args, Transport& transport) {
   // A bad command line on one rank ends every rank with the same error.
   RunRequest request;
-  std::string error;
-  try {
-    request = parse_run_args(args);
-  } catch (const std::exception& e) {
-    error = e.what();
-  }
-  throw_if_any_failed(transport, error);
+  on_every_rank(transport, [&] { request = parse_run_args(args); });
   install_stop_signals();
   request.stop_requested = stop_requested;
   return run_scene(request, transport);

@@ -74,21 +74,6 @@ std::string file_text(const std::string& path) {
   return ss.str();
 }
 
-// Runs `phase`, which must not communicate, on this rank; then every rank
-// learns whether it failed on any, and if so all throw the same RankFailure
-// together (none goes on into a collective that another never reaches).
-template <class Phase>
-void on_every_rank(Transport& transport, Phase&& phase) {
-  std::string error;
-  try {
-    phase();
-  } catch (const std::exception& e) {
-    error = e.what();
-    if (error.empty()) error = "unknown error";
-  }
-  throw_if_any_failed(transport, error);
-}
-
 // Ranks started with different scenes or options (an MPMD launch, a scene
 // file edited while the job started) would split different particles, or
 // enter different collectives: every rank must run what rank 0 runs.
@@ -120,7 +105,6 @@ std::size_t summed_over_ranks(Transport& transport, EditedRestart& edits) {
 long long steps_per(double interval, double dt) {
   return interval > 0 ? std::max(1LL, std::llround(interval / dt)) : 0;
 }
-
 
 // Progress to stderr at most every two seconds: step, time, rate, ETA. Only
 // rank 0 prints it (every rank would repeat the same line). The rate counts

@@ -62,19 +62,6 @@ void RunMeasurements::prepare(Simulation& sim, long long step) const {
     }
 }
 
-template <class Write>
-void RunMeasurements::written_by_rank_0(Write&& write) {
-  std::string error;
-  if (transport_.rank() == 0) {
-    try {
-      write();
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-  }
-  throw_if_any_failed(transport_, error);
-}
-
 void RunMeasurements::evaluate(const Simulation& sim, bool checkpoint) {
   const long long step = sim.step_count();
   std::vector<Flow*> flows;
@@ -96,7 +83,7 @@ void RunMeasurements::evaluate(const Simulation& sim, bool checkpoint) {
   if (contacts_needed) contacts = gather_contact_measures(transport_, local.id, sim.contact_measures());
   const ParticleSnapshot s = gather_snapshot(transport_, std::move(local));
   gather_seconds_ += seconds_since(t0);
-  written_by_rank_0([&] {
+  written_by_rank_0(transport_, [&] {
     for (Flow* f : flows) {
       const auto t1 = Clock::now();
       f->counter.update(s);
@@ -160,7 +147,7 @@ void RunMeasurements::resume(const Simulation& sim) {
   const long long step = sim.step_count();
   if (flows_.empty() && averages_.empty()) return;
   const ParticleSnapshot s = flows_.empty() ? ParticleSnapshot() : gather_snapshot(transport_, sim.snapshot());
-  written_by_rank_0([&] {
+  written_by_rank_0(transport_, [&] {
     for (Flow& f : flows_) {
       const std::vector<std::vector<std::string>> last = f.log->last_rows();
       // A flow that had started continues from this state, which its last

@@ -57,8 +57,6 @@ class RunMeasurements {
     long long evaluations = 0;
     double seconds = 0;
   };
-  template <class Write>
-  void written_by_rank_0(Write&& write);
   void write_average(Average& a, const ParticleSnapshot& s, const std::vector<ContactMeasure>& contacts);
 
   std::string directory_;

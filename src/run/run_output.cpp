@@ -96,22 +96,6 @@ void RunOutput::log(const char* format, ...) {
   }
 }
 
-// Rank 0 writes; then every rank learns whether it could, so that a failed
-// write stops all of them at the same point instead of leaving the others in
-// the next step's exchange.
-template <class Write>
-void RunOutput::written_by_rank_0(Write&& write) {
-  std::string error;
-  if (transport_.rank() == 0) {
-    try {
-      write();
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-  }
-  throw_if_any_failed(transport_, error);
-}
-
 // "checkpoint: out/checkpoint_0000001000.h5 (1.96 GB written in 2.10 s, 0.93 GB/s)"
 void RunOutput::log_written(const char* what, const std::string& path, double seconds) {
   const double gigabytes = double(std::filesystem::file_size(path)) / 1e9;
@@ -188,7 +172,7 @@ void RunOutput::snapshot(const Simulation& sim, bool checkpoint_follows) {
   if (!one_rank) gathered = gather_history_records(transport_, on_walls_);
   const ParticleRecords& on_walls = one_rank ? on_walls_ : gathered;
   split_.wall_records += lap(t);
-  written_by_rank_0([&] { write_timeseries_row(sim, s, on_walls, mesh_load); });
+  written_by_rank_0(transport_, [&] { write_timeseries_row(sim, s, on_walls, mesh_load); });
   split_.series += lap(t);
   // The files themselves while the run steps on; the job reads staged_,
   // which the next snapshot or checkpoint refills only after finish().
@@ -269,7 +253,7 @@ void RunOutput::write_timeseries_row(const Simulation& sim, const ParticleSnapsh
 
 void RunOutput::mixing(const Simulation& sim) {
   const ParticleSnapshot s = gather_snapshot(transport_, sim.snapshot());
-  written_by_rank_0([&] {
+  written_by_rank_0(transport_, [&] {
     if (mixing_log_) mixing_log_->append(evaluate_mixing(*scene_.mixing, s));
   });
 }
@@ -280,7 +264,7 @@ void RunOutput::removals(Simulation& sim) {
   Bytes local(mine.size() * sizeof(RemovedParticle));
   if (!mine.empty()) std::memcpy(local.data(), mine.data(), local.size());
   const std::vector<Bytes> every_rank = transport_.gather(std::move(local));
-  written_by_rank_0([&] {
+  written_by_rank_0(transport_, [&] {
     std::vector<RemovedParticle> all;
     for (const Bytes& b : every_rank) {
       const std::size_t at = all.size();
@@ -293,7 +277,7 @@ void RunOutput::removals(Simulation& sim) {
 
 void RunOutput::resume(long long step) {
   finish();
-  written_by_rank_0([&] { index_earlier_snapshots(step); });
+  written_by_rank_0(transport_, [&] { index_earlier_snapshots(step); });
 }
 
 void RunOutput::index_earlier_snapshots(long long step) {
@@ -368,7 +352,7 @@ void RunOutput::fault_snapshot(const Simulation& sim) {
   finish();
   const ParticleSnapshot s = gather_snapshot(transport_, sim.snapshot());
   const std::string path = directory_ + "/" + fault_snapshot_name(s.step);
-  written_by_rank_0([&] {
+  written_by_rank_0(transport_, [&] {
     SnapshotMetadata m;
     m.scene_hash = scene_hash_;
     m.scene_path = scene_.path;

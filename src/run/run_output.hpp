@@ -76,8 +76,6 @@ class RunOutput {
   const std::string& directory() const { return directory_; }
 
  private:
-  template <class Write>
-  void written_by_rank_0(Write&& write);
   void in_background(std::function<void()> job);
   void log_written(const char* what, const std::string& path, double seconds);  // a file's size and speed  // rank 0 starts it on writer_ (after finish())
   void index_earlier_snapshots(long long step);  // rank 0's part of resume()

@@ -55,6 +55,35 @@ TEST(RankAgreement, EveryRankFailingAlikeGivesTheMessageAlone) {
   EXPECT_EQ(agreed(all, true), "cannot open s.yaml");
 }
 
+// A phase that throws on one rank stops every rank with its message; one
+// whose exception says nothing still counts as a failure.
+TEST(RankAgreement, OnEveryRankStopsAllWhenOnePhaseThrows) {
+  const int last = world().size() - 1;
+  const auto fails_on = [](int rank, const char* what) {
+    return [=] {
+      if (world().rank() == rank) throw std::runtime_error(what);
+    };
+  };
+  EXPECT_NO_THROW(on_every_rank(world(), [] {}));
+  try {
+    on_every_rank(world(), fails_on(last, "cannot read s.yaml"));
+    ADD_FAILURE() << "no rank threw";
+  } catch (const RankFailure& e) {
+    EXPECT_EQ(std::string(e.what()), world().size() == 1 ? "cannot read s.yaml"
+                                                          : "rank " + std::to_string(last) + ": cannot read s.yaml");
+  }
+  EXPECT_THROW(on_every_rank(world(), fails_on(last, "")), RankFailure);
+}
+
+// Only rank 0 writes, and its failure, even a silent one, stops every rank.
+TEST(RankAgreement, WrittenByRank0RunsOnRank0AndSharesItsFailure) {
+  int writes = 0;
+  written_by_rank_0(world(), [&] { ++writes; });
+  EXPECT_EQ(writes, world().rank() == 0 ? 1 : 0);
+  EXPECT_THROW(written_by_rank_0(world(), [] { throw std::runtime_error("disk full"); }), RankFailure);
+  EXPECT_THROW(written_by_rank_0(world(), [] { throw std::runtime_error(""); }), RankFailure);
+}
+
 // Started on every rank, finished later: the minimum over ranks, with other
 // collectives in between.
 TEST(RankAgreement, NonBlockingMinimum) {
