@@ -1,12 +1,11 @@
 // `measurements:` -> SceneSpec::measurements (docs/SCENES.md, docs/MEASUREMENTS.md).
 #include <cmath>
-#include <filesystem>
 #include <set>
 #include <stdexcept>
 #include <string>
 
 #include "scene/scene_sections.hpp"
-#include "walls/stl.hpp"
+#include "walls/triangle_mesh.hpp"
 
 namespace gs::scene_yaml {
 
@@ -65,17 +64,7 @@ void read_markers(const Map& m, FlowSpec& f) {
 // wall reads one; it must lie inside the domain.
 void read_surface(const Val& v, const SceneSpec& s, FlowSpec& f) {
   const Map m(v, {"stl", "scale", "weld_tolerance"});
-  const Val file = m.get("stl");
-  std::filesystem::path path(text(file));
-  if (path.is_relative()) path = std::filesystem::path(s.path).parent_path() / path;
-  StlReadOptions options;
-  options.scale = number_or(m, "scale", 1.0, positive);
-  options.weld_tolerance = number_or(m, "weld_tolerance", 0.0, nonnegative);
-  try {
-    f.surface = read_stl(path.string(), options);
-  } catch (const std::exception& e) {
-    fail(file, cut(e.what(), 4 * kEchoLength));
-  }
+  f.surface = read_scene_stl(m, s);
   Vec3d lo, hi;
   mesh_bounds(f.surface, lo, hi);
   if (!inside_domain(lo, s) || !inside_domain(hi, s))

@@ -3,6 +3,7 @@
 #include "scene/fill_region.hpp"
 #include "scene/scene_yaml.hpp"
 #include "scene/scene_loader.hpp"
+#include "walls/triangle_mesh.hpp"
 
 namespace gs::scene_yaml {
 
@@ -11,6 +12,10 @@ int material_index(const SceneSpec& s, const Val& v);
 
 // `walls:` -> s.walls and s.wall_names (needs s.materials).
 void parse_walls(const Map& top, SceneSpec& s);
+// The triangles of the STL file an entry names under `stl` (relative to the
+// scene file), read with its `scale` and `weld_tolerance`; a file that
+// cannot be read fails naming the entry's `stl` (scene_walls.cpp).
+TriangleMesh read_scene_stl(const Map& m, const SceneSpec& s);
 
 // Refuses a mesh whose binning in cells of `cell_size` for the Verlet skin
 // `skin` (run_binning) would exceed the limits of bin_triangles

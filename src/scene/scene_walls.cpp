@@ -113,20 +113,9 @@ void add_cylinder(SceneSpec& s, const Wall& proto, const Val& v, const std::stri
 void add_mesh_wall(SceneSpec& s, const Wall& proto, const Timeline& timeline, const Val& v, const std::string& name) {
   const Map m(v, {"stl", "scale", "weld_tolerance", "crease_angle"});
   check_new_name(s, name, v);
-  const Val file = m.get("stl");
-  std::filesystem::path path(text(file));
-  if (path.is_relative()) path = std::filesystem::path(s.path).parent_path() / path;
-  StlReadOptions options;
-  options.scale = number_or(m, "scale", 1.0, positive);
-  options.weld_tolerance = number_or(m, "weld_tolerance", 0.0, nonnegative);
   const double crease = number_or(m, "crease_angle", kDefaultCreaseAngleDeg, nonnegative);
   if (!(crease < 90)) fail(m.get("crease_angle"), "must be below 90 degrees");
-  TriangleMesh mesh;
-  try {
-    mesh = read_stl(path.string(), options);
-  } catch (const std::exception& e) {
-    fail(file, cut(e.what(), 4 * kEchoLength));
-  }
+  TriangleMesh mesh = read_scene_stl(m, s);
   mesh.name = name;
   const MeshMotion motion{proto.velocity, proto.angular_velocity, proto.axis_point, proto.motion_start, timeline};
   try {
@@ -140,6 +129,20 @@ void add_mesh_wall(SceneSpec& s, const Wall& proto, const Timeline& timeline, co
 }
 
 }  // namespace
+
+TriangleMesh read_scene_stl(const Map& m, const SceneSpec& s) {
+  const Val file = m.get("stl");
+  std::filesystem::path path(text(file));
+  if (path.is_relative()) path = std::filesystem::path(s.path).parent_path() / path;
+  StlReadOptions options;
+  options.scale = number_or(m, "scale", 1.0, positive);
+  options.weld_tolerance = number_or(m, "weld_tolerance", 0.0, nonnegative);
+  try {
+    return read_stl(path.string(), options);
+  } catch (const std::exception& e) {
+    fail(file, cut(e.what(), 4 * kEchoLength));
+  }
+}
 
 int material_index(const SceneSpec& s, const Val& v) {
   const std::string name = text(v);

@@ -471,5 +471,13 @@ TEST(SceneLoaderErrors, MeshInMillimetresIsRefusedBeforeBinning) {
   EXPECT_NO_THROW(parse_scene(edit(wall, m), "scene.yaml"));
 }
 
+// A mesh wall's STL file that is not there: the error names the entry's key
+// and the file (the scene's directory before a relative name).
+TEST(SceneLoaderErrors, MissingMeshFileNamesTheKeyAndTheFile) {
+  const std::string wall = "  - box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}\n    material: steel\n";
+  const std::string missing = wall + "  - mesh: {stl: gs_no_such_mesh.stl}\n    material: steel\n";
+  test::expect_scene_error(edit(wall, missing), 13, "walls[1].mesh.stl", "runs/gs_no_such_mesh.stl", "runs/scene.yaml");
+}
+
 }  // namespace
 }  // namespace gs
