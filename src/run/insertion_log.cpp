@@ -15,19 +15,13 @@ constexpr int kWarningsPerInlet = 10;
 
 InsertionLog::InsertionLog(const SceneSpec& scene, const std::string& directory, Transport& transport)
     : scene_(scene), path_(directory + "/inlets.csv"), transport_(transport), warned_(scene.inlets.size(), 0) {
-  std::string error;
-  if (transport_.rank() == 0) {
-    try {
-      // A restart appends to the file of the run it continues.
-      const bool fresh = !std::filesystem::exists(path_) || std::filesystem::file_size(path_) == 0;
-      TextFile f(path_, "a");
-      if (fresh) f.printf("step,time,inlet,count,mass,shortfall,total_count,total_mass\n");
-      f.close();
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-  }
-  throw_if_any_failed(transport_, error);
+  written_by_rank_0(transport_, [&] {
+    // A restart appends to the file of the run it continues.
+    const bool fresh = !std::filesystem::exists(path_) || std::filesystem::file_size(path_) == 0;
+    TextFile f(path_, "a");
+    if (fresh) f.printf("step,time,inlet,count,mass,shortfall,total_count,total_mass\n");
+    f.close();
+  });
 }
 
 void InsertionLog::write(const std::vector<InsertionRecord>& records, const Log& log) {
@@ -41,20 +35,15 @@ void InsertionLog::write(const std::vector<InsertionRecord>& records, const Log&
         " attempts each; they stay due for the next batch" +
         (warned == kWarningsPerInlet ? " (further shortfalls of this inlet: inlets.csv only)" : "") + "\n");
   }
-  std::string error;
-  if (transport_.rank() == 0 && !records.empty()) {
-    try {
-      TextFile f(path_, "a");
-      for (const InsertionRecord& r : records)
-        f.printf("%lld,%.17g,%s,%llu,%.17g,%llu,%llu,%.17g\n", r.step, r.time,
-                 scene_.inlets[std::size_t(r.inlet)].name.c_str(), (unsigned long long)r.count, r.mass,
-                 (unsigned long long)r.shortfall, (unsigned long long)r.total.inserted, r.total.mass);
-      f.close();
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-  }
-  throw_if_any_failed(transport_, error);
+  written_by_rank_0(transport_, [&] {
+    if (records.empty()) return;
+    TextFile f(path_, "a");
+    for (const InsertionRecord& r : records)
+      f.printf("%lld,%.17g,%s,%llu,%.17g,%llu,%llu,%.17g\n", r.step, r.time,
+               scene_.inlets[std::size_t(r.inlet)].name.c_str(), (unsigned long long)r.count, r.mass,
+               (unsigned long long)r.shortfall, (unsigned long long)r.total.inserted, r.total.mass);
+    f.close();
+  });
 }
 
 }  // namespace gs
