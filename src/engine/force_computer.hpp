@@ -88,7 +88,7 @@ class ForceComputer final : public ForceComputation {
           return;
         }
       }
-      launch(s.n_owned, k);
+      launch_forces(s.n_owned, k, [](const auto& f) { return f; });
     });
   }
   // Each pair once: the pairs among all the owned particles first, whichever
@@ -106,7 +106,7 @@ class ForceComputer final : public ForceComputation {
           return;
         }
       }
-      launch(split.interior, AtIndices<decltype(k)>{k, split.order});
+      launch_forces(split.interior, k, at_indices(split.order));
     });
   }
   // Then the pairs with ghosts, and the boundary's sums.
@@ -124,7 +124,7 @@ class ForceComputer final : public ForceComputation {
           return;
         }
       }
-      launch(split.boundary, AtIndices<decltype(k)>{k, boundary});
+      launch_forces(split.boundary, k, at_indices(boundary));
     });
   }
 
@@ -177,6 +177,21 @@ class ForceComputer final : public ForceComputation {
   void launch(Index n, const F& f) {
     if constexpr (Exec::verlet_list) Exec::parallel_for_lanes(n, lanes_setting_, f);
     else Exec::parallel_for(n, f);
+  }
+  // The force kernel k over n items, each the functor as(k) makes (k
+  // itself, or k at a list of indices), launched as launch does; on a GPU,
+  // where one thread takes a particle and the scene has no mesh, without
+  // the mesh path (WithoutMeshes).
+  template <class K, class As>
+  void launch_forces(Index n, const K& k, const As& as) {
+    if constexpr (Exec::backend == Backend::cuda) {
+      if (meshes_.n_triangles == 0 && force_lanes(n, lanes_setting_) == 1)
+        return Exec::parallel_for(n, as(WithoutMeshes<K>{k}));
+    }
+    launch(n, as(k));
+  }
+  static auto at_indices(const Index* index) {
+    return [index](const auto& f) { return AtIndices<std::decay_t<decltype(f)>>{f, index}; };
   }
   template <class Candidates>
   ForceKernel<Real, Model, Effects, Candidates> kernel(ParticleStore& s, const Candidates& candidates, double dt,

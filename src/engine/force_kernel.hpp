@@ -8,7 +8,9 @@
 // contacts in ascending triangle order of the particle's near list
 // (walls/mesh_near.hpp: the same contacts as its mesh cell's). On a GPU
 // a small scene gives each particle a group of lanes instead (in_group): the
-// same contacts, added in the same order, so the same bits. The CPU may
+// same contacts, added in the same order, so the same bits; one thread per
+// particle in a scene without a mesh runs WithoutMeshes, the same work with
+// the mesh path compiled out. The CPU may
 // compute each touching pair once for both spheres instead (pairs_of, then
 // sum_entries; engine/pairs_once_policy.hpp says when): the same bits again.
 #include <type_traits>
@@ -94,7 +96,11 @@ struct ForceKernel {
   // most this many per particle; more claim a slot at once).
   static constexpr int kWaitingMeshContacts = 4;
 
-  GS_HD GS_INLINE void operator()(Index i) const {
+  GS_HD GS_INLINE void operator()(Index i) const { contacts<true>(i); }
+
+  // operator()'s work, with the mesh path compiled in or out (WithoutMeshes).
+  template <bool Meshes>
+  GS_HD GS_INLINE void contacts(Index i) const {
     ContactLoad<Real> total;
     unsigned touched = 0;
     int pairs_touching = 0;
@@ -107,7 +113,9 @@ struct ForceKernel {
     }
     add_wall_contacts(i, xi, total, touched);
     // One uniform branch per particle when the scene has no mesh (docs/MESHES.md, cost).
-    if (meshes.n_triangles > 0) add_mesh_contacts(i, xi, total, touched);
+    if constexpr (Meshes) {
+      if (meshes.n_triangles > 0) add_mesh_contacts(i, xi, total, touched);
+    }
     finish(i, total, touched, pairs_touching);
   }
 
@@ -515,6 +523,17 @@ struct ForceKernel {
     add_to(total, load);
     return load;
   }
+};
+
+// A ForceKernel of one thread per particle for a scene without meshes, whose
+// path it compiles out: on a GPU that path, taken by no thread there, cost
+// the frictional kernel registers, a stack frame and spills
+// (docs/PERFORMANCE.md, "A force kernel without the mesh path").
+template <class K>
+struct WithoutMeshes {
+  static constexpr int kMinBlocksPerSM = K::kMinBlocksPerSM;
+  K k;
+  GS_HD GS_INLINE void operator()(Index i) const { k.template contacts<false>(i); }
 };
 
 }  // namespace gs

@@ -95,5 +95,32 @@ TEST_F(ForceLanesTest, GroupsOfLanesGiveTheBitsOfOneThread) {
   }
 }
 
+// A scene without a mesh gives one thread per particle a kernel with the
+// mesh path compiled out (engine/force_kernel.hpp, WithoutMeshes), lanes the
+// kernel with it: the same bits. The settling demo (2,000 frictional spheres
+// in a box of six walls, 3,000 steps: falling, then a pile on the floor) and
+// the periodic chute cell (rolling resistance, a plane base, two axes that
+// wrap, 3,000 steps).
+TEST_F(ForceLanesTest, WithoutAMeshOneThreadGivesTheBitsOfLanes) {
+  if (!cuda_device_available()) GTEST_SKIP() << "no CUDA device";
+  const std::string here = __FILE__;
+  const std::string cases = here.substr(0, here.rfind("tests/engine/")) + "cases/";
+  for (const char* file : {"demo/settle.yaml", "periodic/chute_cell.yaml"}) {
+    SCOPED_TRACE(file);
+    const SceneSpec scene = load_scene(cases + file);
+    ASSERT_EQ(scene.meshes.n_triangles(), 0);
+    std::uint64_t one_thread = 0;
+    for (const char* lanes : {"1", "4"}) {
+      env_.set(lanes);
+      Simulation sim(scene, {Backend::cuda});
+      sim.run(3000);
+      const std::uint64_t digest = state_digest(sim.snapshot(), sim.history());
+      std::printf("%s, lanes %s: digest 0x%016" PRIx64 "\n", file, lanes, digest);
+      if (lanes == std::string("1")) one_thread = digest;
+      else EXPECT_EQ(digest, one_thread) << lanes << " lanes per particle";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace gs
