@@ -130,20 +130,27 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   // the carried table is still held, and are merged into the new list's
   // entries and springs, which replace the carried table's, once the cell
   // list is gone; without history the new list's entries come beside the
-  // cell order. (A GPU that finds the neighbours in one pass holds their
-  // rows only in the room of the carried table's springs less the cells:
-  // NeighbourFinder::staged_width; no phase above these.)
+  // cell order. A build inside a step holds no forces (their values spent:
+  // Simulation::rebuild_neighbours_without_forces); a re-sort before it does, with
+  // the sort's buffers, which its gather reuses. (A GPU that finds the
+  // neighbours in one pass holds their rows only in the room of the carried
+  // table's springs less the cells: NeighbourFinder::staged_width; no phase
+  // above these.)
   const bool history = fields_kept != 0;
   const double origin = history ? sizeof(Index) : 0, order = sizeof(Index);
   auto build_peak = [&](double sort_buffers, double freed_per_entry) {
-    const double freed = sizeof(Vec3f) + (history ? 0 : list_entries) + freed_per_entry * entries;
-    const double sort = -freed + origin + order + std::max(double(sizeof(double)), sort_buffers);
+    // Freed first: the old references, without history the old entries,
+    // the CPU's reverse entries.
+    const double spent = sizeof(Vec3f) + (history ? 0 : list_entries) + freed_per_entry * entries;
+    const double resort = -spent + origin + order + std::max(double(sizeof(double)), sort_buffers);
+    const double sort = -spent - m.force_bytes + origin + order + sort_buffers;
     if (history) {
-      const double keep = -freed + origin + order + sizeof(ListOffset) + kept;
-      const double merge = -double(sizeof(Vec3f)) + sizeof(ListOffset) + kept;  // the entries (and reverse entries) back
-      return std::max({0.0, sort, keep, merge});
+      const double keep = -spent - m.force_bytes + origin + order + sizeof(ListOffset) + kept;
+      // the entries (and reverse entries) back
+      const double merge = -double(sizeof(Vec3f)) - m.force_bytes + sizeof(ListOffset) + kept;
+      return std::max({0.0, resort, sort, keep, merge});
     }
-    return std::max({0.0, sort, -freed + order + list_entries});
+    return std::max({0.0, resort, sort, -spent - m.force_bytes + order + list_entries});
   };
   // A restart before and through its first build, against what is held
   // between rebuilds: the pair contacts of the checkpoint's rows wait in the
@@ -151,14 +158,15 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   // at most twelve or contact_slots; a row's offset) with each particle's
   // origin, first beside a piece of the rows in transit (a 32nd of the
   // contact_slots: engine/particle_mover_history.hpp), then beside the
-  // build's sort and, until the contacts are kept, its kept contacts; no
-  // list and no entries exist yet.
+  // build's sort and, until the contacts are kept, its kept contacts, where
+  // the forces wait on the host (Simulation's restart); no list and no
+  // entries exist yet.
   auto restart_peak = [&](double sort_buffers) {
     const double contact = sizeof(ParticleId) + springs;
     const double pending = std::min(double(scene.contact_slots), kEstimatedListEntries) * contact + sizeof(ListOffset);
     const double phase = std::max({double(scene.contact_slots) * contact / 32,
-                                   order + std::max(double(sizeof(double)), sort_buffers),
-                                   order + sizeof(ListOffset) + kept});
+                                   order + std::max(double(sizeof(double)), sort_buffers) - m.force_bytes,
+                                   order + sizeof(ListOffset) + kept - m.force_bytes});
     return std::max(0.0, pending + origin + phase - m.list_bytes - pair_entry * entries);
   };
   const double key = m.cells <= (std::int64_t(1) << 32) ? sizeof(std::uint32_t) : sizeof(std::uint64_t);

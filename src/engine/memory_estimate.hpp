@@ -26,7 +26,9 @@ struct MemoryEstimate {
   double list_bytes = 0;          // Verlet list (offsets, references, entries) and the meshes' near lists, per particle
   // What a rebuild of the lists holds at its peak beyond what the run holds
   // between rebuilds, per particle: the largest of its phases
-  // (engine/neighbour_finder.hpp), with history the kept contacts'.
+  // (engine/neighbour_finder.hpp), with history the kept contacts', less
+  // the forces and torques, whose storage a build does without
+  // (Simulation::rebuild_neighbours_without_forces).
   double build_bytes = 0;
   // What an output (snapshot or checkpoint) holds beside the run, per
   // particle (engine/particle_mover_output.hpp): where the ids stay dense
@@ -41,8 +43,8 @@ struct MemoryEstimate {
   // checkpoint's rows in the pending table (a partner id and the springs
   // each, at most twelve, and a row's offset) and each particle's origin,
   // beside a piece of the rows in transit (a 32nd) or the build's sort or
-  // kept contacts, where the Verlet list and its entries' springs are not
-  // built yet; 0 where that holds less (without history). Below a build's
+  // kept contacts (the forces waiting on the host), where the Verlet list
+  // and its entries' springs are not built yet; 0 where that holds less (without history). Below a build's
   // phases: the pending contacts are at most the list's entries, and a
   // build holds the old list and its springs beside the same kept contacts.
   double restart_bytes = 0;

@@ -23,6 +23,11 @@ class ParticleMovement {
   // Sizes the force arrays and the contact history for n particles (owned +
   // ghosts); the history grows geometrically and keeps every stored contact.
   virtual void reserve(Index n) = 0;
+  // Frees the force arrays' storage, their values spent (a step's kick-drift
+  // has read them and its force pass writes every owned particle's anew),
+  // until reserve() sizes them again: a list build between the two holds
+  // its transients without them (engine/simulation.cpp).
+  virtual void release_forces() = 0;
 
   // Packs particles `which` (store indices in backend memory, as
   // ParticleRouter selects them), with their contact history when

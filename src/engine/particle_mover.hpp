@@ -52,6 +52,11 @@ class ParticleMover final : public ParticleMovement {
     }
   }
 
+  void release_forces() override {
+    st_.forces.force.discard();
+    st_.forces.torque.discard();
+  }
+
   MessageHeader pack(const ParticleStore& s, const DeviceArray<Index>& which, bool with_history,
                      DeviceArray<unsigned char>& out) const override;
   void unpack(ParticleStore& s, const MessageHeader& h, const unsigned char* payload, bool as_ghosts) override;

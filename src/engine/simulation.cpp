@@ -57,7 +57,7 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
   setup_timings_.particles = seconds_since(t0);
   // Forces at t = 0 for the first half kick.
   const auto t1 = Clock::now();
-  rebuild_neighbours();
+  rebuild_neighbours_without_forces();
   kernels_->forces().compute(store_, 0.0, 0);
   kernels_->synchronize();
   setup_timings_.first_forces = seconds_since(t1);
@@ -68,9 +68,11 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
     : scene_(without_particles(scene)), options_(options), exchange_(std::move(exchange)) {
   set_up(scene);
   insertion_ = restart.insertion ? *restart.insertion : initial_insertion_state(scene.inlets.size(), gs::particle_count(scene));
-  restore(restart);
+  std::vector<Vec3d> force, torque;  // the owned particles' last forces, in store order
+  restore(restart, force, torque);
   if (exchange_) exchange_->refresh_ghosts(store_, kernels_->movement());
-  rebuild_neighbours();
+  rebuild_neighbours_without_forces();
+  kernels_->movement().set_forces(store_, force, torque);
 }
 
 void Simulation::set_up(const SceneSpec& scene) {
@@ -123,9 +125,11 @@ void Simulation::set_up(const SceneSpec& scene) {
   }
 }
 
-// This rank's share of the saved particles, bit for bit, with their history
-// and last forces; walls are posed from the absolute time, as in the run.
-void Simulation::restore(const RestartState& r) {
+// This rank's share of the saved particles, bit for bit, with their history,
+// and their last forces into `force` and `torque` (store order: the caller
+// sets them once the first list is built); walls are posed from the absolute
+// time, as in the run.
+void Simulation::restore(const RestartState& r, std::vector<Vec3d>& force, std::vector<Vec3d>& torque) {
   step_ = r.step;
   last_reorder_ = r.step;
   time_ = r.time;
@@ -135,7 +139,6 @@ void Simulation::restore(const RestartState& r) {
   for (std::size_t i = 0; i < r.particles.size(); ++i)
     if (!exchange_ || exchange_->owns(r.particles.position[i])) mine.push_back(Index(i));
   ParticleRecords part;
-  std::vector<Vec3d> force, torque;
   const HostHistory& h = r.particles.history;
   const std::size_t slots = std::size_t(h.slots);
   part.history.slots = h.slots;
@@ -159,7 +162,6 @@ void Simulation::restore(const RestartState& r) {
   store_.n_owned = 0;
   store_.n_ghost = 0;
   kernels_->movement().append(store_, part, false);
-  kernels_->movement().set_forces(store_, force, torque);
 }
 
 // The owned particles go straight from the generators into host copies of
@@ -234,6 +236,24 @@ void Simulation::rebuild_neighbours() {
   if (watch_walls_) wall_drift_.built(walls_);
 }
 
+// A build while no force on the backend is needed: in a step after its
+// kick-drift has read the last forces and before its force pass writes every
+// owned particle's anew; at the start before the first force pass, or, on a
+// restart, while the saved forces wait on the host. The force arrays'
+// storage goes back to the backend while the build's transients are held
+// (with a contact history the kept contacts beside the list's tables: a
+// frictional run's peak), 24 bytes per particle in fp32.
+void Simulation::rebuild_neighbours_without_forces() {
+  kernels_->movement().release_forces();
+  try {
+    rebuild_neighbours();
+  } catch (...) {  // sized again, so that what reads them after the error reads no freed storage
+    kernels_->movement().reserve(store_.size());
+    throw;
+  }
+  kernels_->movement().reserve(store_.size());
+}
+
 // The meshes' and walls' motion since the lists were built, against the half
 // skin the near lists and the surface rows leave it (walls/mesh_near.hpp,
 // engine/surface_rows.hpp); the same on every rank.
@@ -288,7 +308,7 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
     if (kernels_->neighbours().stale(store_) || surfaces_drifted()) {
       finish_forward();  // (a list built on the ghosts' last positions would be wrong)
       if (!exchange_) reorder_if_due();
-      rebuild_neighbours();
+      rebuild_neighbours_without_forces();
       ++neighbour_builds_;
     }
     timings_.neighbours += phase_seconds(t0);

@@ -117,10 +117,11 @@ class Simulation {
  private:
   void set_up(const SceneSpec& scene);
   void upload(const SceneSpec& scene, const std::function<bool(const Vec3d&)>& keep, const KeepWindow& window);
-  void restore(const RestartState& restart);
+  void restore(const RestartState& restart, std::vector<Vec3d>& force, std::vector<Vec3d>& torque);
   void move_walls(double t);
   void pose_meshes(double t);
   void rebuild_neighbours();
+  void rebuild_neighbours_without_forces();  // where no force's value is needed on the backend
   // A build of the lists is due for the meshes' or the walls' motion.
   bool surfaces_drifted() const;
   void insert_due();

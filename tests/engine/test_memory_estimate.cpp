@@ -56,7 +56,7 @@ constexpr double kCpuPairEntry = 4 + 24 + 1;
 // that, with history: the kept contacts, each pair's by one side (halved
 // rows: engine/pair_keep.hpp), 6 of a partner id and a spring (96), their
 // offsets 4, the origin rows 4 and the cell order 4, the old
-// references (12) freed; without history none: the sort's phase (the cell
+// references (12) and the force and torque (24) freed; without history none: the sort's phase (the cell
 // order 4, a GPU's cell sort, 32-bit keys of the cell alone and their second
 // buffer and the indices' second buffer, 12) and the fill's (the cell order
 // and the new entries) come after the old list's entries and references are
@@ -71,8 +71,8 @@ TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   EXPECT_EQ(m.surface_row_share, 0);
   EXPECT_EQ(m.history_bytes, 12 * 13 + 4);
   EXPECT_EQ(m.list_bytes, 4 + 12 + 12 * 4);
-  EXPECT_EQ(m.build_bytes, 12 / 2 * (4 + 12) + 4 + 4 + 4 - 12);
-  EXPECT_EQ(m.bytes_per_particle, 90 + 24 + 160 + 64 + 96);
+  EXPECT_EQ(m.build_bytes, 12 / 2 * (4 + 12) + 4 + 4 + 4 - 12 - 24);
+  EXPECT_EQ(m.bytes_per_particle, 90 + 24 + 160 + 64 + 72);
   EXPECT_EQ(m.cpu_extra_bytes, 12 * kCpuPairEntry - 8);
   const MemoryEstimate none = estimate_memory(lattice_scene(2, 0));
   EXPECT_EQ(none.history_bytes, 0);
@@ -192,7 +192,9 @@ TEST(MemoryEstimate, MatchesTheRunsPeakOnTheCpu) {
 // peak is what it holds between rebuilds with, while the kept contacts are
 // merged into the new list, 6 contacts, each pair's kept by the side of
 // lower id (halved rows: one rank, every partner owned), so 3 of 16 bytes
-// in the staging buffer, and their offsets (4) in place of the old list's references (12): the
+// in the staging buffer, and their offsets (4) in place of the old list's references (12)
+// and of the forces and torques (24: a build in a step does without them,
+// and holds 24 bytes per particle more where it does not): the
 // estimate with 6 entries and 6 contacts instead of 12, and the CPU's
 // kCpuPairEntry per entry (a GPU's peak comes earlier, while the contacts are
 // kept, beside the cell order and the origin rows, which the CPU's reverse
@@ -213,7 +215,7 @@ TEST(MemoryEstimate, RebuildHoldsTheTouchingContactsOnly) {
   ASSERT_EQ(got.contacts_per_particle, 6);
   const double entries = 6, contacts = 6, missing = kEstimatedListEntries - entries;
   const double held = m.bytes_per_particle - m.transient_bytes() - missing * (4 + 1 + 12) + entries * kCpuPairEntry;
-  const double keeping = contacts / 2 * (4 + 12) + 4 - 12;
+  const double keeping = contacts / 2 * (4 + 12) + 4 - 12 - 24;
   EXPECT_GE(got.bytes_per_particle, held + keeping);
   EXPECT_LT(got.bytes_per_particle, held + keeping + m.cell_bytes / double(scene.particles.size()) + 1)
       << "builds " << got.builds << ", held " << got.held_per_particle;
@@ -299,9 +301,10 @@ TEST(MemoryEstimate, RestartPeaksNoHigherThanTheRunItContinues) {
 // 5.81 a sphere. The estimate's
 // restart (MemoryEstimate::restart_bytes: twelve pairs pending, each
 // particle's origin and the kept contacts of the first build; by hand 196 +
-// 4 + 104 less the list and its entries, 64 and 156) is then below its
-// build's peak (the kept contacts, 96, their offsets and the origin and cell
-// order less the references).
+// 4 + 104 less the forces, which wait on the host, 24, and the list and its
+// entries, 64 and 156) is then below its build's peak (the kept contacts,
+// 96, their offsets and the origin and cell order less the references and
+// the forces).
 TEST(MemoryEstimate, RestartRowsHoldOnlyTheirPairContacts) {
   SceneSpec scene = lattice_scene(32, kFriction, 0.00198);
   scene.domain_max = {0.05, 0.05, 0.05};
@@ -324,7 +327,7 @@ TEST(MemoryEstimate, RestartRowsHoldOnlyTheirPairContacts) {
   const double restart_peak = double(backend_peak_bytes(Backend::cpu) - before) / n;
   EXPECT_LE(restart_peak, run_peak + 2) << "the run it continues: " << run_peak;
   const MemoryEstimate m = estimate_memory(scene);
-  EXPECT_DOUBLE_EQ(m.restart_bytes, 196 + 4 + 104 - 64 - 156);
+  EXPECT_DOUBLE_EQ(m.restart_bytes, 196 + 4 + 104 - 24 - 64 - 156);
   EXPECT_LT(m.restart_bytes, m.build_bytes);
 }
 
