@@ -43,7 +43,7 @@ RunOutput::RunOutput(const SceneSpec& scene, const std::string& directory, Trans
       scene_hash_(scene_hash(scene_text_)) {
   fields_ = scene.output.fields.empty() ? default_snapshot_fields() : parse_snapshot_fields(scene.output.fields);
   if (fields_.has(SnapshotField::contact_count) && !keeps_history(scene.model, scene.effects))
-    throw std::invalid_argument("output.fields: contact_count needs a contact history (friction, rolling resistance or a hysteretic contact model)");
+    throw std::invalid_argument("output.fields: contact_count needs a contact history (friction, rolling resistance or the hysteretic_linear contact model)");
   // A periodic run's positions are wrapped: the image counts unwrap them.
   if (particle_fields_kept(scene) & kImageCounts) fields_.add(SnapshotField::image);
   if (transport_.rank() != 0) return;

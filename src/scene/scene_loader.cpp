@@ -87,10 +87,11 @@ void parse_globals(const Map& top, SceneSpec& s) {
       } catch (const std::invalid_argument& e) {
         fail(list, cut(e.what(), 4 * kEchoLength));
       }
-      // Contacts are counted in the contact history, which only these effects keep.
+      // Contacts are counted in the contact history, which only these effects and models keep.
       if (fields.has(SnapshotField::contact_count) && !keeps_history(s.model, s.effects))
-        fail(list, "contact_count needs friction or rolling resistance (contact history); set effects.friction or "
-                   "effects.rolling_resistance, or leave the field out");
+        fail(list, "contact_count needs a contact history (friction, rolling resistance or the hysteretic_linear "
+                   "contact model); set effects.friction or effects.rolling_resistance, use contact_model: "
+                   "hysteretic_linear, or leave the field out");
       if (fields.has(SnapshotField::image) && s.periodic_axes == 0)
         fail(list, "image (image counts) is kept only by periodic runs; set domain.periodic, or leave the field out");
     }

@@ -150,7 +150,7 @@ TEST_F(CliTest, HugeDomain) {
 TEST_F(CliTest, ContactCountWithoutFriction) {
   expect_refused(edit("output: {directory: scene_out}",
                       "output: {directory: scene_out, fields: [id, position, contact_count]}"),
-                 "scene.yaml:16: output.fields: contact_count needs friction");
+                 "scene.yaml:16: output.fields: contact_count needs a contact history");
 }
 
 TEST_F(CliTest, MeshInMillimetres) {

@@ -391,9 +391,16 @@ TEST(SceneLoaderErrors, ContactCountWithoutHistoryHasFileAndLine) {
   const std::string frictionless = edit("effects: {friction: true}", "effects: {cohesion: false}");
   expect_error(edit("output: {interval: 0.01, directory: res}",
                     "output: {interval: 0.01, directory: res, fields: [id, position, contact_count]}", frictionless),
-               19, "output.fields", "contact_count needs friction");
+               19, "output.fields", "contact_count needs a contact history");
   EXPECT_NO_THROW(parse_scene(edit("output: {interval: 0.01, directory: res}",
                                    "output: {interval: 0.01, directory: res, fields: [id, position, contact_count]}"),
+                              "scene.yaml"));
+  // The hysteretic law keeps a history (its peak overlaps) without any effect.
+  const std::string hysteretic =
+      edit("effects: {cohesion: false}", "contact_model: hysteretic_linear\neffects: {cohesion: false}", frictionless);
+  EXPECT_NO_THROW(parse_scene(edit("output: {interval: 0.01, directory: res}",
+                                   "output: {interval: 0.01, directory: res, fields: [id, position, contact_count]}",
+                                   hysteretic),
                               "scene.yaml"));
 }
 
