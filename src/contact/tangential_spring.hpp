@@ -49,7 +49,7 @@ GS_HD GS_INLINE Vec3<Real> tangential_force(Vec3<Real>& elastic_force, const Vec
 // the relative rolling rotation, stored as a displacement xi_r = R* theta_r,
 // with force k_r xi_r capped at mu_r f_n (f_n the clamped repulsive normal
 // force); the torque on the particle is -R* k_r xi_r. k_r is the pair's
-// stiffness_rolling in both models, constant over the contact, so the history
+// stiffness_rolling in all three models, constant over the contact, so the history
 // can stay a displacement. At the cap a rolling sphere feels the constant
 // torque mu_r R* f_n. `rolling_velocity` is R* (omega_i - omega_j) in the
 // tangent plane.

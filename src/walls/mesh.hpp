@@ -95,7 +95,7 @@ struct MeshSet {
   std::vector<std::int32_t> material;         // per mesh
   std::vector<double> crease_cos;             // per mesh: cos(crease angle)
   std::vector<MeshMotion> motion;             // per mesh
-  std::vector<MeshPose> pose;                 // per mesh, at the time of the last move_meshes
+  std::vector<MeshPose> pose;                 // per mesh, at the time of the last set_mesh_poses or move_meshes
   std::vector<Vec3d> reference;               // per vertex, reference pose (t = 0)
   std::vector<Vec3d> vertex;                  // per vertex, current pose
   std::vector<MeshCorners> corners;           // per triangle
