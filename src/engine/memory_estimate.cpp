@@ -119,23 +119,23 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   // A rebuild's phases against what is held between rebuilds
   // (engine/neighbour_finder.hpp), each transient freed before the next
   // phase allocates. The old list's references and, without history, its
-  // entries (and the CPU's reverse entries) are freed first; with history
-  // its entries and springs become the carried table and each particle gets
-  // an origin row. Then the cell order of the particles beside, in the
-  // staging buffer, either a re-sort's gather of one fp64 component of a
-  // field or the sort's keys and second buffers (32-bit keys of the cell
-  // alone, 12 bytes, on a GPU where the cells number at most 2^32:
-  // neighbor/cell_list.hpp; the CPU's 64-bit keys with the ids, 20). With
-  // history the kept contacts and their offsets take the sort's place while
-  // the carried table is still held, and are merged into the new list's
-  // entries and springs, which replace the carried table's, once the cell
-  // list is gone; without history the new list's entries come beside the
-  // cell order. A build inside a step holds no forces (their values spent:
-  // Simulation::rebuild_neighbours_without_forces); a re-sort before it does, with
-  // the sort's buffers, which its gather reuses. (A GPU that finds the
-  // neighbours in one pass holds their rows only in the room of the carried
-  // table's springs less the cells: NeighbourFinder::staged_width; no phase
-  // above these.)
+  // entries (and the CPU's reverse entries) are freed first, and the forces,
+  // whose values a build inside a step has spent
+  // (Simulation::rebuild_neighbours_without_forces). With history the old
+  // list's entries and springs become the carried table and each particle
+  // gets an origin row; each particle's touching contacts are kept from it
+  // (the kept contacts and their offsets) before the sort, and the carried
+  // table and the origins are freed. Then the cell order of the particles
+  // beside the sort's keys and second buffers, in the staging buffer (32-bit
+  // keys of the cell alone, 12 bytes, on a GPU where the cells number at most
+  // 2^32: neighbor/cell_list.hpp; the CPU's 64-bit keys with the ids, 20);
+  // then the new list's entries beside the cell order, and, once the cell
+  // list is gone, with history the new list's springs, into which the kept
+  // contacts are merged. A re-sort before a build holds the forces, the
+  // cell order and a gather of one fp64 component of a field in the sort's
+  // buffers. (A GPU that finds the neighbours in one pass holds their rows
+  // only in the room of the carried table's springs less the cells:
+  // NeighbourFinder::staged_width; no phase above these.)
   const bool history = fields_kept != 0;
   const double origin = history ? sizeof(Index) : 0, order = sizeof(Index);
   auto build_peak = [&](double sort_buffers, double freed_per_entry) {
@@ -143,13 +143,16 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
     // the CPU's reverse entries.
     const double spent = sizeof(Vec3f) + (history ? 0 : list_entries) + freed_per_entry * entries;
     const double resort = -spent + origin + order + std::max(double(sizeof(double)), sort_buffers);
-    const double sort = -spent - m.force_bytes + origin + order + sort_buffers;
+    const double sorting = order + sort_buffers;
     if (history) {
-      const double keep = -spent - m.force_bytes + origin + order + sizeof(ListOffset) + kept;
+      const double keep = -spent - m.force_bytes + origin + sizeof(ListOffset) + kept;
+      const double carried = sizeof(ListOffset) + list_entries + pair_entry * entries;  // with the origins, freed
+      const double sort = keep - origin - carried + sorting;
       // the entries (and reverse entries) back
       const double merge = -double(sizeof(Vec3f)) - m.force_bytes + sizeof(ListOffset) + kept;
-      return std::max({0.0, resort, sort, keep, merge});
+      return std::max({0.0, resort, keep, sort, merge});
     }
+    const double sort = -spent - m.force_bytes + sorting;
     return std::max({0.0, resort, sort, -spent - m.force_bytes + order + list_entries});
   };
   // A restart before and through its first build, against what is held
@@ -158,16 +161,16 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   // at most twelve or contact_slots; a row's offset) with each particle's
   // origin, first beside a piece of the rows in transit (a 32nd of the
   // contact_slots: engine/particle_mover_history.hpp), then beside the
-  // build's sort and, until the contacts are kept, its kept contacts, where
-  // the forces wait on the host (Simulation's restart); no list and no
+  // build's kept contacts, which then stand beside its sort; the forces wait
+  // on the host through the build (Simulation's restart); no list and no
   // entries exist yet.
   auto restart_peak = [&](double sort_buffers) {
     const double contact = sizeof(ParticleId) + springs;
     const double pending = std::min(double(scene.contact_slots), kEstimatedListEntries) * contact + sizeof(ListOffset);
-    const double phase = std::max({double(scene.contact_slots) * contact / 32,
-                                   order + std::max(double(sizeof(double)), sort_buffers) - m.force_bytes,
-                                   order + sizeof(ListOffset) + kept - m.force_bytes});
-    return std::max(0.0, pending + origin + phase - m.list_bytes - pair_entry * entries);
+    const double arrival = pending + origin + double(scene.contact_slots) * contact / 32;
+    const double keep = pending + origin + sizeof(ListOffset) + kept - m.force_bytes;
+    const double sort = sizeof(ListOffset) + kept + order + sort_buffers - m.force_bytes;
+    return std::max(0.0, std::max({arrival, keep, sort}) - m.list_bytes - pair_entry * entries);
   };
   const double key = m.cells <= (std::int64_t(1) << 32) ? sizeof(std::uint32_t) : sizeof(std::uint64_t);
   m.build_bytes = build_peak(2 * key + sizeof(Index), 0);

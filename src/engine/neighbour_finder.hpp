@@ -17,11 +17,11 @@ namespace gs {
 
 // Told when the Verlet list is about to be replaced or invalidated (it still
 // describes the store it was built on, unless the store changed since), when
-// a new one is about to be built (the cell list is built: the staging buffer
-// is free until the new list is) and when it is built: the pair history
-// (engine/pair_carry.hpp) keeps its springs per list entry. Its tables take
-// entry_bytes() per entry; it frees them before the new list is built and
-// allocates them anew once it is.
+// a new one is about to be built (before the cell list is sorted: neither
+// the cell list nor the staging buffer is held then) and when it is built:
+// the pair history (engine/pair_carry.hpp) keeps its springs per list
+// entry. Its tables take entry_bytes() per entry; it frees them before the
+// new list is built and allocates them anew once it is.
 struct ListFollower {
   virtual void list_replacing(const ParticleStore& s) = 0;
   virtual void list_building(const ParticleStore& s) = 0;
@@ -45,27 +45,28 @@ class NeighbourFinder final : public NeighbourSearch {
   }
 
   void build_cell_list(const ParticleStore& s, const CellGrid& grid) override {
-    if (follower_) follower_->list_replacing(s);
-    // The follower has taken the history it keeps per entry: what is left of
-    // the list goes before the sort's buffers come.
-    discard_spent_list(verlet_);
-    split_ = {};
-    build_cells<Exec>(cells_, s.position.data(), s.id.data(), s.size(), grid, scratch_);
+    retire_list(s);
+    sort_cells(s, grid);
   }
   const DeviceArray<Index>& cell_order() const override { return cells_.sorted; }
   bool uses_verlet_list() const override { return Exec::verlet_list; }
   // A build holds at once only what one of its phases needs, each transient
-  // freed before the next phase allocates: the sort's buffers (in the
-  // staging buffer) before the follower's kept contacts and the new list, the
-  // cell list before the follower's new tables, the kept contacts before the
+  // freed before the next phase allocates: the follower keeps its contacts
+  // before the cell list is sorted (beside neither the cell list nor what a
+  // re-sort left in the staging buffer) and frees its old tables, the sort's
+  // buffers (in the staging buffer) go before the new list comes, the cell
+  // list before the follower's new tables, the kept contacts before the
   // reference positions. So between builds a run holds neither the cell
   // list nor a staging buffer (docs/PERFORMANCE.md, "A build's transients
-  // one after another").
+  // one after another", "The contacts kept before the sort").
   void build(const ParticleStore& s, const CellGrid& grid, double skin) override {
-    build_cell_list(s, grid);
+    retire_list(s);
     if constexpr (Exec::verlet_list) {
+      cells_.discard();
       scratch_.discard();
       if (follower_) follower_->list_building(s);
+      sort_cells(s, grid);
+      scratch_.discard();
       if constexpr (Exec::backend == Backend::cuda) verlet_.staged_width = staged_width(s);
       build_verlet_list<Exec>(verlet_, cells_, s.position.data(), s.radius.data(), s.id.data(), s.n_owned, s.size(),
                               skin);
@@ -75,8 +76,9 @@ class NeighbourFinder final : public NeighbourSearch {
       built_at_ = s.revision;
       ++builds_;
       if (follower_) follower_->list_built(s);
-      scratch_.discard();
       set_list_references<Exec>(verlet_, s.position.data());
+    } else {
+      sort_cells(s, grid);
     }
   }
   void follow(ListFollower* f) { follower_ = f; }
@@ -151,6 +153,18 @@ class NeighbourFinder final : public NeighbourSearch {
   const PeriodicBox& box() const { return cells_.grid.box; }
 
  private:
+  // The list about to be replaced: the follower takes the history it keeps
+  // per entry, and what is left of the list goes before anything a build
+  // allocates.
+  void retire_list(const ParticleStore& s) {
+    if (follower_) follower_->list_replacing(s);
+    discard_spent_list(verlet_);
+    split_ = {};
+  }
+  void sort_cells(const ParticleStore& s, const CellGrid& grid) {
+    build_cells<Exec>(cells_, s.position.data(), s.id.data(), s.size(), grid, scratch_);
+  }
+
   // The ghost split of a list just built over a store with ghosts (none
   // without: a single rank's store has none, and keeps no array for it). Two
   // stable selections into one array of the owned particles' indices; their
@@ -175,8 +189,8 @@ class NeighbourFinder final : public NeighbourSearch {
   // A GPU build's rows in one pass (staged_list_width) take the room of the
   // follower's tables of the last list, which the follower has freed and
   // allocates anew once this list is built, less the cell list held beside
-  // the rows: so they raise neither the peak of the phase that kept the
-  // contacts (which held those tables and the cells) nor that of the merge.
+  // the rows: so they hold no more than the phase that kept the contacts
+  // (which held those tables) or the merge (which holds them anew).
   int staged_width(const ParticleStore& s) const {
     const std::size_t tables = follower_ ? follower_->entry_bytes() * last_entries_ : 0;
     const std::size_t cells = cells_.bytes();

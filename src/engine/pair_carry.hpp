@@ -2,7 +2,7 @@
 // PairCarry: the particle-pair history (engine/pair_history.hpp) carried
 // across what changes the store and the Verlet list, on an execution policy:
 // detached before the store changes or the list is replaced, its contacts
-// kept in the staging buffer once the cell list is built (engine/pair_keep.hpp),
+// kept before the cell list is sorted (engine/pair_keep.hpp),
 // merged into the entries of each new list, and read as per-particle rows
 // (messages, checkpoints, output) while attached or detached.
 #include <cstdint>
@@ -115,7 +115,7 @@ class PairCarry final : public StoreObserver, public ListFollower {
 #undef GS_POINT_AT_FIELD
     return a;
   }
-  // The same of the kept table in the staging buffer at `base` (kept_).
+  // The same of the kept table at `base` (kept_).
   FieldArrays<Real> kept_fields(unsigned char* base) const {
     FieldArrays<Real> a;
     int f = 0;
@@ -128,7 +128,7 @@ class PairCarry final : public StoreObserver, public ListFollower {
   }
   StepState<Real>& st_;
   NeighbourFinder<Exec>& finder_;
-  KeptLayout kept_;  // the kept table in the staging buffer, from list_building to list_built
+  KeptLayout kept_;  // the kept table's layout, from list_building to list_built
   DeviceArray<ListOffset> arrival_rows_{Exec::backend};  // arrive's scan into new surface rows
 };
 
@@ -150,10 +150,10 @@ void PairCarry<Exec, Real>::detach(const ParticleStore& s) {
   v.valid = false;
 }
 
-// Detached, the cell list built and the Verlet list not yet: each owned
-// particle's contacts go to the kept table, and the detached tables are
-// freed before the new list and its entries are allocated, so the old and
-// the new tables are never held at once.
+// Detached, before the cell list is sorted: each owned particle's contacts
+// go to the kept table, and the detached tables are freed before the cell
+// list, the new list and its entries are allocated, so the old and the new
+// tables are never held at once.
 template <class Exec, class Real>
 void PairCarry<Exec, Real>::list_building(const ParticleStore& s) {
   if (!st_.keeps_history()) return;
@@ -171,8 +171,8 @@ void PairCarry<Exec, Real>::list_building(const ParticleStore& s) {
   Exec::parallel_for(n, CountKept{contacts, h.kept_begin.data()});
   const ListOffset total = Exec::scan_counts(h.kept_begin.data(), n, finder_.verlet().scan_scratch, nullptr);
   kept_ = KeptLayout::of<Real>(total, st_.kept);
-  st_.staging.resize_discarding(kept_.total);
-  unsigned char* base = st_.staging.data();
+  h.kept.resize_discarding(kept_.total);
+  unsigned char* base = h.kept.data();
   ParticleId* kept_partner = reinterpret_cast<ParticleId*>(base + kept_.partner);
   Exec::parallel_for_lanes(n, kRowLanes,
                            KeepContacts<Real>{contacts, h.kept_begin.data(), kept_partner, kept_fields(base),
@@ -188,13 +188,14 @@ void PairCarry<Exec, Real>::list_built(const ParticleStore& s) {
   PairHistory<Real>& h = st_.pairs;
   const VerletList& v = finder_.verlet();
   h.current.resize_discarding(v.list.size(), st_.kept);
-  unsigned char* base = st_.staging.data();
+  unsigned char* base = h.kept.data();
   const ParticleId* kept_partner = reinterpret_cast<const ParticleId*>(base + kept_.partner);
   Exec::parallel_for_lanes(v.n_owned, kRowLanes,
                            MergeKept<Real>{v.begin.data(), v.list.data(), s.id.data(), h.kept_begin.data(), kept_partner,
                                            kept_fields(base), h.current.touching.data(), field_arrays(h.current),
                                            halved_rows(s)});
   h.kept_begin.discard();
+  h.kept.discard();
   h.attached = true;
 }
 

@@ -18,10 +18,10 @@
 // alone, in row order, wait in the `pending` table until the build (a CSR
 // table: a restart's rows of 12 or more slots hold a few touching pairs);
 // inserted particles have none.
-// At the build, once the cell list is built, each particle's touching
+// At the build, before the cell list is sorted, each particle's touching
 // contacts are copied from its carried or pending row into the kept table
-// (ascending partner id; in the staging buffer: engine/pair_keep.hpp) and
-// the carried and pending tables are freed; then the new list is built and
+// (ascending partner id: engine/pair_keep.hpp) and the carried and pending
+// tables are freed; then the cell list and the new list are built and
 // each particle's new entries (ascending partner id) take their springs from
 // its kept contacts (a merge); the rest start from zero.
 //
@@ -130,7 +130,8 @@ struct PairHistory {
         pending_begin(b),
         pending_partner(b),
         pending(b),
-        kept_begin(b) {}
+        kept_begin(b),
+        kept(b) {}
 
   bool attached = false;         // current follows the finder's list
   PairEntries<Real> current;     // per list entry
@@ -143,9 +144,12 @@ struct PairHistory {
   DeviceArray<ParticleId> pending_partner;  // the rows' pair contacts: partner ids
   PairEntries<Real> pending;                // their fields (touching unused)
   Index pending_rows = 0;
-  // During a build: the kept table's offsets, per owned particle + 1 (its
-  // contacts lie in the staging buffer: engine/pair_keep.hpp).
+  // During a build: the kept table's offsets, per owned particle + 1, and
+  // its contacts (partner ids and fields as KeptLayout places them:
+  // engine/pair_keep.hpp), kept before the cell list is sorted and merged
+  // into the new list's entries once it is built.
   DeviceArray<ListOffset> kept_begin;
+  DeviceArray<unsigned char> kept;
 
   // The detached tables freed once their contacts are kept, before the new
   // list is allocated, so that the two are never held at once. (On a GPU a
@@ -173,7 +177,7 @@ struct PairHistory {
 
   std::size_t bytes() const {
     return current.bytes() + carried_begin.bytes() + carried_partner.bytes() + carried.bytes() + origin.bytes() +
-           pending_begin.bytes() + pending_partner.bytes() + pending.bytes() + kept_begin.bytes();
+           pending_begin.bytes() + pending_partner.bytes() + pending.bytes() + kept_begin.bytes() + kept.bytes();
   }
 };
 

@@ -1,16 +1,17 @@
 #pragma once
-// The kept table: at a Verlet list rebuild, once the cell list is built and
-// before the new list is, each owned particle's touching pair contacts
-// (partner id and springs, ascending partner id) are copied out of the
-// detached tables (engine/pair_history.hpp: the old list's entries, or a
-// pending row) into the step's staging buffer, and the detached tables are
-// freed; the new list's entries then take their springs from it.
+// The kept table: at a Verlet list rebuild, before the cell list is sorted,
+// each owned particle's touching pair contacts (partner id and springs,
+// ascending partner id) are copied out of the detached tables
+// (engine/pair_history.hpp: the old list's entries, or a pending row) into
+// the kept table (PairHistory::kept), and the detached tables are freed; the
+// new list's entries then take their springs from it.
 //
 // Why: the merge used to read the old list's whole table (an id, a flag and
 // the springs of every old entry, 17 bytes in fp32 with friction) beside the
 // new one, so a rebuild held two tables at once. The kept table holds only
-// the contacts (16 bytes each), and in the staging buffer, which a rebuilding
-// run holds anyway: a loosening bed touches at a third of its entries.
+// the contacts (16 bytes each): a loosening bed touches at a third of its
+// entries. Kept before the sort, they stand beside neither the cell list nor
+// the sort's buffers.
 //
 // Bitwise the same springs: an entry that does not touch holds zero springs
 // and flag 0 (PairSprings::release), which is what an entry left out of the
@@ -180,7 +181,7 @@ struct KeepContacts {
   }
 };
 
-// Where the kept table's arrays lie in the staging buffer: the partner ids,
+// Where the kept table's arrays lie in its storage: the partner ids,
 // then each kept history field (GS_HISTORY_FIELDS order), 256-byte aligned.
 struct KeptLayout {
   static constexpr int kFields = 3;

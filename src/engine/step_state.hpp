@@ -41,12 +41,10 @@ struct StepState {
   // (neighbor/cell_list.hpp): allocating device memory every step would cost
   // more than the copies, and one buffer for all of them keeps only the
   // largest at the peak. It holds nothing from one call to the next: a user
-  // must be done with it (on the stream) before it returns; one exception,
-  // within a build of the neighbour lists, the pair history's kept contacts
-  // from the cell list's build to the Verlet list's (engine/pair_keep.hpp).
-  // A build of the lists frees it twice (after the sort, after the kept
-  // contacts: engine/neighbour_finder.hpp), so that it stands beside neither
-  // the new list nor its references.
+  // must be done with it (on the stream) before it returns. A build of the
+  // lists frees it before the pair history keeps its contacts and after the
+  // sort (engine/neighbour_finder.hpp), so that it stands beside neither the
+  // kept contacts nor the new list.
   DeviceArray<unsigned char> staging;
 };
 

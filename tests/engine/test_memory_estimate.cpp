@@ -55,15 +55,16 @@ constexpr double kCpuPairEntry = 4 + 24 + 1;
 // offsets 4, fp32 reference 12, 12 entries of 4. A rebuild's peak, beyond
 // that, with history: the kept contacts, each pair's by one side (halved
 // rows: engine/pair_keep.hpp), 6 of a partner id and a spring (96), their
-// offsets 4, the origin rows 4 and the cell order 4, the old
-// references (12) and the force and torque (24) freed; without history none: the sort's phase (the cell
-// order 4, a GPU's cell sort, 32-bit keys of the cell alone and their second
-// buffer and the indices' second buffer, 12) and the fill's (the cell order
-// and the new entries) come after the old list's entries and references are
-// freed. The CPU's own per entry: kCpuPairEntry; with history its rebuild's
-// peak comes later than a GPU's, when the kept contacts are merged into the
-// new list (its reverse entries, freed with the old list, set again), without
-// the cell order and origin rows: 8 bytes per particle fewer.
+// offsets 4 and the origin rows 4 (kept before the sort: no cell order
+// beside them), the old references (12) and the force and torque (24)
+// freed; without history none: the sort's phase (the cell order 4, a GPU's
+// cell sort, 32-bit keys of the cell alone and their second buffer and the
+// indices' second buffer, 12) and the fill's (the cell order and the new
+// entries) come after the old list's entries and references are freed. The
+// CPU's own per entry: kCpuPairEntry; with history its rebuild's peak comes
+// later than a GPU's, when the kept contacts are merged into the new list
+// (its reverse entries, freed with the old list, set again), without the
+// origin rows: 4 bytes per particle fewer.
 TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   const MemoryEstimate m = estimate_memory(lattice_scene(2, kFriction));
   EXPECT_EQ(m.field_bytes, 4 + 1 + 1 + 3 * 4 + 3 * 24);
@@ -71,9 +72,9 @@ TEST(MemoryEstimate, FrictionalFp32LayoutByHand) {
   EXPECT_EQ(m.surface_row_share, 0);
   EXPECT_EQ(m.history_bytes, 12 * 13 + 4);
   EXPECT_EQ(m.list_bytes, 4 + 12 + 12 * 4);
-  EXPECT_EQ(m.build_bytes, 12 / 2 * (4 + 12) + 4 + 4 + 4 - 12 - 24);
-  EXPECT_EQ(m.bytes_per_particle, 90 + 24 + 160 + 64 + 72);
-  EXPECT_EQ(m.cpu_extra_bytes, 12 * kCpuPairEntry - 8);
+  EXPECT_EQ(m.build_bytes, 12 / 2 * (4 + 12) + 4 + 4 - 12 - 24);
+  EXPECT_EQ(m.bytes_per_particle, 90 + 24 + 160 + 64 + 68);
+  EXPECT_EQ(m.cpu_extra_bytes, 12 * kCpuPairEntry - 4);
   const MemoryEstimate none = estimate_memory(lattice_scene(2, 0));
   EXPECT_EQ(none.history_bytes, 0);
   EXPECT_EQ(none.force_bytes, 12);  // no torque without friction
@@ -192,13 +193,13 @@ TEST(MemoryEstimate, MatchesTheRunsPeakOnTheCpu) {
 // peak is what it holds between rebuilds with, while the kept contacts are
 // merged into the new list, 6 contacts, each pair's kept by the side of
 // lower id (halved rows: one rank, every partner owned), so 3 of 16 bytes
-// in the staging buffer, and their offsets (4) in place of the old list's references (12)
+// in the kept table, and their offsets (4) in place of the old list's references (12)
 // and of the forces and torques (24: a build in a step does without them,
 // and holds 24 bytes per particle more where it does not): the
 // estimate with 6 entries and 6 contacts instead of 12, and the CPU's
 // kCpuPairEntry per entry (a GPU's peak comes earlier, while the contacts are
-// kept, beside the cell order and the origin rows, which the CPU's reverse
-// entries, freed then, outweigh). Held beside the new list, the old list's
+// kept, beside the origin rows, which the CPU's reverse entries, freed
+// then, outweigh). Held beside the new list, the old list's
 // table (17 bytes per entry and its offsets) would add 110 bytes per particle.
 TEST(MemoryEstimate, RebuildHoldsTheTouchingContactsOnly) {
   const int side = 12;
@@ -301,10 +302,9 @@ TEST(MemoryEstimate, RestartPeaksNoHigherThanTheRunItContinues) {
 // 5.81 a sphere. The estimate's
 // restart (MemoryEstimate::restart_bytes: twelve pairs pending, each
 // particle's origin and the kept contacts of the first build; by hand 196 +
-// 4 + 104 less the forces, which wait on the host, 24, and the list and its
+// 4 + 100 less the forces, which wait on the host, 24, and the list and its
 // entries, 64 and 156) is then below its build's peak (the kept contacts,
-// 96, their offsets and the origin and cell order less the references and
-// the forces).
+// 96, their offsets and the origins less the references and the forces).
 TEST(MemoryEstimate, RestartRowsHoldOnlyTheirPairContacts) {
   SceneSpec scene = lattice_scene(32, kFriction, 0.00198);
   scene.domain_max = {0.05, 0.05, 0.05};
@@ -327,7 +327,7 @@ TEST(MemoryEstimate, RestartRowsHoldOnlyTheirPairContacts) {
   const double restart_peak = double(backend_peak_bytes(Backend::cpu) - before) / n;
   EXPECT_LE(restart_peak, run_peak + 2) << "the run it continues: " << run_peak;
   const MemoryEstimate m = estimate_memory(scene);
-  EXPECT_DOUBLE_EQ(m.restart_bytes, 196 + 4 + 104 - 24 - 64 - 156);
+  EXPECT_DOUBLE_EQ(m.restart_bytes, 196 + 4 + 100 - 24 - 64 - 156);
   EXPECT_LT(m.restart_bytes, m.build_bytes);
 }
 
