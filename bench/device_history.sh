@@ -23,7 +23,9 @@
 # build_*.log, memory/, settle_bench.log, bench/.
 # METIS and yaml-cpp may be carried in carry/root as for bench/device_session.sh.
 # A dry run on a machine without a GPU: BACKEND=cpu with BEFORE_BUILD and
-# AFTER_BUILD (existing CPU builds; nothing is built), small N.
+# AFTER_BUILD (existing CPU builds; nothing is built), small N and LARGEST
+# (memory_bench's default, 4e8 spheres, would exhaust the host's memory), e.g.
+#   BACKEND=cpu N=8000 LARGEST=4000:12 BEFORE_BUILD=build AFTER_BUILD=build bench/device_history.sh
 set -uo pipefail
 root=$(pwd)
 OUT=${OUT:-$root/device_out}

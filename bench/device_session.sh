@@ -56,7 +56,8 @@ if wants bench; then
 fi
 if wants baseline && [[ -d carry/base ]]; then
   # Before against after in the same lease: the tree at an earlier commit, unpacked into carry/base
-  # (git archive <commit> | tar -x -C carry/base), built beside build-gpu and timed alternately.
+  # (mkdir -p carry/base && git archive <commit> | tar -x -C carry/base), built beside build-gpu
+  # and timed alternately.
   cmake -S carry/base -B build-base -DCMAKE_BUILD_TYPE=Release -DGS_ENABLE_CUDA=ON "${extra[@]}" >> "$log" 2>&1 &&
     cmake --build build-base -j 16 --target settle_bench >> "$log" 2>&1 || echo "BASE BUILD FAILED" >> "$log"
   {

@@ -3,8 +3,9 @@
 # kept between rebuilds (docs/MULTI_RANK.md, "What moves when"): a settling
 # lattice bed of N spheres per rank (bench/lattice_bed.sh) stacked along z,
 # the slab axis, run by BUILD and, when given, by BASE_BUILD (a build of the
-# commit before, e.g. `git archive <commit> | tar -x -C carry/base` built
-# beside it). Prints per build the phases' seconds per step from the run log
+# commit before, built beside it from
+# `mkdir -p carry/base && git archive <commit> | tar -x -C carry/base`).
+# Prints per build the phases' seconds per step from the run log
 # ("time per phase", whose sum is the run's time per step: the phases are
 # measured on every 128th step and scaled to the run's time), the exchange's
 # share of the step, and the halo's rebuilds; the logs stay in OUT. A timed

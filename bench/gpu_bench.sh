@@ -216,7 +216,7 @@ if wanted random && (($(left) > 120)); then
     done
   done
 else
-  echo "skipped random bed: out of time" | tee -a "$out/skipped.txt"
+  echo "skipped random bed: $(wanted random && echo "out of time" || echo "in SKIP")" | tee -a "$out/skipped.txt"
 fi
 
 # Mixer case b, soft: settled to t = 1 s (the impeller starts then) to a
@@ -242,7 +242,7 @@ if wanted mixer_b && (($(left) > 90)); then
     done
   done
 else
-  echo "skipped mixer b: out of time" | tee -a "$out/skipped.txt"
+  echo "skipped mixer b: $(wanted mixer_b && echo "out of time" || echo "in SKIP")" | tee -a "$out/skipped.txt"
 fi
 
 # Mixer case a from its start: the small scene (7,680 spheres).

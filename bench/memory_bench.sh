@@ -33,9 +33,16 @@
 # try that would start with less than 60 s of the budget (BUDGET_S, default
 # 300) left is skipped.
 set -uo pipefail
+# Without BUILD every run below would fail into its log and the script exit 0.
+if (($# < 1 || $# > 2)) || [[ -z $1 ]]; then
+  echo "usage: [OUT=dir] [N=4000000] [LARGEST=\"N:SLOTS ...\"] [REBUILDING=\"M ...\"] [BACKEND=cuda] [BUDGET_S=300]" \
+    "bench/memory_bench.sh BUILD [BASE_BUILD]" >&2
+  exit 2
+fi
 root=$(pwd)
 absolute() { [[ $1 == /* ]] && echo "$1" || echo "$root/$1"; }
 build=$(absolute "$1") base=${2:+$(absolute "$2")}
+[[ -x $build/bench/settle_bench ]] || { echo "memory_bench.sh: no bench/settle_bench in BUILD $build" >&2; exit 2; }
 backend=${BACKEND:-cuda}  # BACKEND=cpu: a dry run of the script on the CPU
 n=${N:-4000000}
 largest=${LARGEST:-"400000000:12 400000000:10 360000000:12"}

@@ -6,7 +6,7 @@
 # study across sessions", has the whole procedure.
 #
 #   [BUDGET_S=480] [JOBS=1] [MPS=0] [BACKEND=cuda] [RESERVE_S=40] [MIN_PIECE_S=60] [PACK=1] [RETRY=0]
-#   [KEEP_REVOLUTIONS="0 1 5 10 32"] [KEEP_RUNS='*_s1']
+#   [KEEP_REVOLUTIONS="REV ..." (default none kept; e.g. "0 1 5 10 32")] [KEEP_RUNS='*_s1']
 #     bench/mixer_campaign.sh BUILD CAMPAIGN_DIR OUT
 #
 # CAMPAIGN_DIR holds the runs' scenes (NAME.yaml, written by

@@ -12,7 +12,9 @@
 //
 //   settle_bench [--n N] [--steps S] [--backend cpu|cuda] [--precision fp32|fp64|fp32_full]
 //                [--effects none|friction|rolling|cohesion] [--model linear|hertz]
-//                [--mesh impeller]   (the seed's impeller turning at 30 rpm in the bed)
+//                [--mesh impeller]   (the seed's impeller turning at 30 rpm in the bed; needs
+//                                     --n 63701 or more: smaller lattices can lie wholly in
+//                                     the cylinder the impeller sweeps, 99 mm across, 104 mm tall)
 //                [--skin S]          (Verlet list skin in largest diameters, default 0.1)
 //                [--contacts no]     (skip the count of contacts at the end, a host copy of the
 //                                     whole state: the largest beds, whose host memory it would pass)
@@ -145,6 +147,10 @@ gs::SceneSpec bed_scene(const Options& o) {
     if (o.mesh && dx * dx + dy * dy < swept * swept && q.position.z < top) continue;
     s.particles.push_back(q);
   }
+  // Else the run fails later, and cryptically ("cell size must be positive").
+  if (s.particles.empty())
+    throw std::invalid_argument("--mesh impeller: every sphere of --n " + std::to_string(o.n) +
+                                " lies in the cylinder the impeller sweeps (63701 or more leave some outside)");
   s.contact_time = gs::critical_contact_time(s);
   s.time_step = 0.2 * s.contact_time;
   s.duration = s.time_step * double(o.steps);

@@ -20,16 +20,18 @@
 # MPS=1 starts a private CUDA MPS daemon for the runs (quit at the end), so
 # that their kernels can run at once rather than in time slices.
 #
-# Estimate (not measured: no GPU where this was written). dt = 27.8 us (0.1
-# of the contact time at 500 N/m); the cases take 36k (Fr 3) to 155k
-# (Fr 3e-3) steps, 1.0e6 steps and 1.35e10 particle-steps in all. On one
-# H200 a scene of this size is launch-bound: ~0.27 ms per step alone
-# (docs/PERFORMANCE.md: 7,680 spheres, 0.27 ms), so the longest case alone
+# Estimate (made before any GPU run). dt = 27.8 us (0.1 of the contact
+# time at 500 N/m); the cases take 39k (Fr 0.1) to 155k (Fr 3e-3) steps
+# (as measured: 38,771 and 155,124), 1.0e6 steps and 1.35e10 particle-steps
+# in all. On one H200 a scene of this size is launch-bound: ~0.27 ms per
+# step alone (docs/PERFORMANCE.md: 7,680 spheres, 0.27 ms), so the longest case alone
 # ~42 s and all 13 one after the other ~270 s; side by side the GPU runs
 # other cases' kernels while one waits on its host, so the wall time should
 # lie between the longest case (~45 s) and the serial sum (~270 s). The
 # Fr = 1e-3 case of the earlier plan (2.6e5 steps) is left out for that
-# reason.
+# reason. Measured (2026-12-03, one H200, beside the silo and chute scripts
+# under one MPS daemon; docs/data/validation_full/drum_results.md): each run
+# 64-129 s, tools/drum.py done 139 s into the 382 s budget.
 #
 # Writes OUT/drum_results.md (machine, commit, plan, the table: paste into
 # docs/VALIDATION.md), OUT/drum_angle_<backend>.png (angle against Fr and

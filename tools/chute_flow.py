@@ -404,7 +404,7 @@ def check_ci(results):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("binary", help="grainstorm (not run for the angles --reuse finds in --work)")
+    ap.add_argument("binary", nargs="?", help="grainstorm (not run for the angles --reuse finds in --work)")
     ap.add_argument("--preset", choices=sorted(PRESETS), default="ci")
     ap.add_argument("--out", help="tables and plots here (default: none for ci, chute_<preset> otherwise)")
     ap.add_argument("--work", help="keep the runs here (default: a temporary directory, removed)")
@@ -433,6 +433,8 @@ def main():
                 f.write(scene_text(PRESETS[preset], theta, f"out/chute_{preset}_{theta:.0f}deg"))
             print("wrote", os.path.relpath(path, ROOT))
         return 0
+    if not a.binary:
+        ap.error("BINARY is required unless --write-cases")
     if not a.reuse and not os.access(a.binary, os.X_OK):
         print(f"not an executable: {a.binary}", file=sys.stderr)
         return 2

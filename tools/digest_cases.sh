@@ -3,7 +3,7 @@
 # line per scene and rank count, "scene ranks steps digest". Two builds that
 # print the same lines compute the same bits (a refactor must not change them).
 #
-#   [DIGEST_BUILD=DIR] [BACKEND=cpu] [SCENES=regex] [DECOMPOSITION=metis] tools/digest_cases.sh BUILD_DIR [MAX_RANKS=4] [STEPS=200] > digests.txt
+#   [DIGEST_BUILD=DIR] [BACKEND=cpu] [SCENES=regex] [DECOMPOSITION=slabs|metis] tools/digest_cases.sh BUILD_DIR [MAX_RANKS=4] [STEPS=200] > digests.txt
 #
 # BACKEND=cuda runs every rank on the one GPU (ranks sharing a GPU move their
 # messages through host buffers); SCENES keeps the scenes whose paths match
