@@ -19,13 +19,15 @@ const char* kUsage =
     "usage:\n"
     "  grainstorm run SCENE [--backend cpu|cuda] [--steps N] [--out DIR] [--overwrite | --restart CHECKPOINT.h5\n"
     "                 [--edited-scene]] [--exchange auto|device|host]\n"
-    "      run a scene; by default on the GPU when one is present, for the scene's duration;\n"
+    "      run a scene; by default on the GPU when one is present, for the scene's duration\n"
+    "      (--steps N: to step N, counted from the run's start, also after a restart);\n"
     "      into --out (default: the scene's output.directory), which must be new or empty unless\n"
     "      --overwrite (first removes an earlier run's files from it) or --restart (continues the\n"
     "      checkpoint's run from its step, in this or another directory) is given; SIGTERM or\n"
     "      SIGUSR1 writes a checkpoint and exits with code 3 (under mpirun: docs/MULTI_RANK.md);\n"
     "      under mpirun/srun: one rank per GPU (or per CPU share with --backend cpu); GPU ranks\n"
-    "      move particles over NCCL (device) when built with it, else through the host;\n"
+    "      move particles over NCCL (device) when built with it and every rank has a GPU of its\n"
+    "      own, else through the host;\n"
     "      --restart continues from a checkpoint the same scene file wrote, on any number of ranks;\n"
     "      with --edited-scene the scene may have been edited since (the run log lists the edits)\n"
     "  grainstorm check SCENE\n"
@@ -36,7 +38,7 @@ const char* kUsage =
     "  grainstorm mixing SCENE SNAPSHOT.h5... --out FILE.csv [--layers L]\n"
     "      the scene's mixing analysis (Lacey, RSD) over written snapshots, optionally with its\n"
     "      sample cylinders cut into L stacked samples; one CSV row per snapshot\n"
-    "  grainstorm --help | --version\n"
+    "  grainstorm --help | -h | help | --version (or COMMAND --help: this text)\n"
     "\n"
     "The scene format is documented in docs/SCENES.md, output files in docs/OUTPUT.md.\n";
 
@@ -68,11 +70,20 @@ int run_on_every_rank(const std::vector<std::string>& args) {
   }
 }
 
+// `grainstorm --help` (or -h, help), or a command's (`grainstorm run
+// SCENE --help`): the usage, not an error about a scene file called --help.
+bool asks_for_help(const std::vector<std::string>& args) {
+  if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") return true;
+  for (std::size_t k = 1; k < args.size(); ++k)
+    if (args[k] == "--help" || args[k] == "-h") return true;
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+  if (args.empty() || asks_for_help(args)) {
     std::fputs(kUsage, args.empty() ? stderr : stdout);
     return args.empty() ? 2 : 0;
   }

@@ -1,5 +1,6 @@
 // `grainstorm run`: one rank, or one rank per GPU (or CPU) under mpirun. The
 // run itself is the library's (run/driver.hpp); this parses the command line.
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,16 +13,34 @@
 namespace gs {
 namespace {
 
+// --steps N: the step to end at, a whole number >= 0 (all of the text).
+long long parse_steps(const std::string& v) {
+  std::size_t used = 0;
+  long long n = -1;
+  try {
+    n = std::stoll(v, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != v.size() || n < 0)
+    throw std::invalid_argument("--steps must be a whole number >= 0 (the step to end at), got '" + v + "'");
+  return n;
+}
+
 RunRequest parse_run_args(const std::vector<std::string>& args) {
   RunRequest r;
+  std::set<std::string> seen;
   for (std::size_t k = 1; k < args.size(); ++k) {
     const std::string& a = args[k];
+    // Given twice, one of the two would be dropped without a word.
+    if (!a.empty() && a[0] == '-' && !seen.insert(a).second)
+      throw std::invalid_argument("option " + a + " given twice");
     auto value = [&]() -> const std::string& {
-      if (k + 1 >= args.size()) throw std::invalid_argument("option " + a + " needs a value");
+      if (k + 1 >= args.size() || args[k + 1].empty()) throw std::invalid_argument("option " + a + " needs a value");
       return args[++k];
     };
     if (a == "--backend") r.backend = parse_backend(value());
-    else if (a == "--steps") r.steps = std::stoll(value());
+    else if (a == "--steps") r.steps = parse_steps(value());
     else if (a == "--out") r.out = value();
     else if (a == "--restart") r.restart = value();
     else if (a == "--overwrite") r.overwrite = true;

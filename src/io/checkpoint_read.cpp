@@ -20,6 +20,7 @@ namespace {
 
 h5::File open_checked(const std::string& path) {
   std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) refuse(path, "a directory, not a checkpoint file");
   if (!std::filesystem::is_regular_file(path, ec)) refuse(path, "no such file");
   h5::silence_library_errors();
   if (H5Fis_hdf5(path.c_str()) <= 0)

@@ -78,15 +78,15 @@ std::string file_text(const std::string& path) {
 // file edited while the job started) would split different particles, or
 // enter different collectives: every rank must run what rank 0 runs.
 void expect_same_run_everywhere(Transport& transport, const RunRequest& a, std::uint64_t hash) {
-  const std::string mine = std::to_string(hash) + " " + std::to_string(a.steps) + " " + backend_name(a.backend) + " " +
-                           a.exchange + " " + (a.restart.empty() ? "new" : "restart") +
-                           (a.edited_scene ? " edited" : "");
+  const std::string mine = std::to_string(hash) + "\n" + std::to_string(a.steps) + "\n" + backend_name(a.backend) +
+                           "\n" + a.exchange + "\n" + a.out + "\n" + (a.overwrite ? "overwrite" : "") + "\n" +
+                           (a.restart.empty() ? "new" : "restart") + (a.edited_scene ? " edited" : "");
   const Bytes first = transport.broadcast(Bytes(mine.begin(), mine.end()), 0);
   std::string error;
   if (std::string(first.begin(), first.end()) != mine)
-    error = "runs " + a.scene + " (scene hash, --steps, --backend, --exchange, --restart or --edited-scene) differently "
-            "from rank 0: "
-            "every rank must run the same scene with the same options";
+    error = "runs " + a.scene +
+            " (scene hash, --steps, --backend, --exchange, --out, --overwrite, --restart or --edited-scene) "
+            "differently from rank 0: every rank must run the same scene with the same options";
   throw_if_any_failed(transport, error);
 }
 
@@ -192,6 +192,29 @@ void expect_same_step_everywhere(Transport& transport, const std::string& path, 
   std::memcpy(&step_0, first.data(), sizeof(step_0));
   throw_if_any_failed(transport, step == step_0 ? "" : "checkpoint " + path + " is at step " + std::to_string(step) +
                                                           ", rank 0's at step " + std::to_string(step_0));
+}
+
+// A restart continues the checkpoint's steps: the run must end at or after
+// its step, and go on at its time step (a run's time is its step times the
+// time step, so the checkpoint's is its time over its step), else its time
+// would jump and its end be counted in other steps (an edited scene whose
+// materials or stiffness changed the step computed from the contact time).
+void check_restart_steps(const RestartState& r, const SceneSpec& scene, const RunRequest& a, long long total) {
+  if (total < r.step) {
+    const std::string end = a.steps >= 0 ? "--steps " + std::to_string(total)
+                                          : "the scene's duration (step " + std::to_string(total) + ")";
+    throw std::invalid_argument(end + " ends before the checkpoint's step " + std::to_string(r.step) +
+                                ": --steps is the step to end at, counted from the run's start");
+  }
+  if (r.step == 0) return;
+  const double then = r.time / double(r.step);
+  if (std::abs(scene.time_step - then) <= 1e-9 * then) return;
+  char text[256];
+  std::snprintf(text, sizeof(text),
+                "the scene's time step %.17g s differs from the checkpoint's %.17g s (its time over its step): a "
+                "restart continues the checkpoint's steps, so set time_step: {absolute: %.17g} to go on",
+                scene.time_step, then, then);
+  throw std::invalid_argument(text);
 }
 
 // SIGTERM/SIGUSR1 read at every step without waiting on the slowest rank:
@@ -436,7 +459,12 @@ int run_scene(const RunRequest& request, Transport& transport) {
     c = {};
     edits = adapt_to_edited_scene(*restart, stored_walls, scene);
   });
-  if (restart) expect_same_step_everywhere(transport, a.restart, restart->step);
+  if (restart) {
+    expect_same_step_everywhere(transport, a.restart, restart->step);
+    // The same on every rank (the step just agreed, the command line checked),
+    // before the output directory drops what followed the checkpoint.
+    on_every_rank(transport, [&] { check_restart_steps(*restart, scene, a, total); });
+  }
   // Collective from here on: an error on one rank alone in the middle of an
   // exchange can only be reported by ending every rank (main.cpp).
   std::unique_ptr<Simulation> sim = start(scene, a, transport, split, restart, own_gpu);

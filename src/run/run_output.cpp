@@ -43,11 +43,14 @@ RunOutput::RunOutput(const SceneSpec& scene, const std::string& directory, Trans
       scene_hash_(scene_hash(scene_text_)) {
   fields_ = scene.output.fields.empty() ? default_snapshot_fields() : parse_snapshot_fields(scene.output.fields);
   if (fields_.has(SnapshotField::contact_count) && !keeps_history(scene.model, scene.effects))
-    throw std::invalid_argument("output.fields: contact_count needs a contact history (friction, rolling resistance or the hysteretic_linear contact model)");
+    throw std::invalid_argument("output.fields: contact_count needs a contact history (friction, rolling resistance "
+                                "or the hysteretic_linear contact model)");
   // A periodic run's positions are wrapped: the image counts unwrap them.
   if (particle_fields_kept(scene) & kImageCounts) fields_.add(SnapshotField::image);
   if (transport_.rank() != 0) return;
-  std::filesystem::create_directories(directory_);
+  std::error_code made;
+  std::filesystem::create_directories(directory_, made);
+  if (made) throw std::runtime_error("cannot create the output directory " + directory_ + ": " + made.message());
   log_ = open_for_writing(directory_ + "/run.log", "a");
   timeseries_ = open_for_writing(directory_ + "/timeseries.csv", "a");
   if (scene.mixing) {

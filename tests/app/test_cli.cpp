@@ -177,6 +177,27 @@ TEST_F(CliTest, WarnsOfIgnoredFriction) {
 
 TEST_F(CliTest, UnknownOption) { expect_refused(kGoodScene, "--bogus", "--bogus"); }
 
+// --steps is a whole number >= 0, all of its text; an option given twice or
+// without a value is refused (one value would be dropped without a word).
+TEST_F(CliTest, BadStepsAndRepeatedOptions) {
+  for (const char* steps : {"abc", "10x", "1e3", "-1", "-5", "99999999999999999999"})
+    expect_refused(kGoodScene,
+                   std::string("--steps must be a whole number >= 0 (the step to end at), got '") + steps + "'",
+                   std::string("--steps ") + steps);
+  expect_refused(kGoodScene, "option --steps given twice", "--steps 5 --steps 10");
+  expect_refused(kGoodScene, "option --out given twice", "--out other");
+  expect_refused(kGoodScene, "option --steps needs a value", "--steps ''");
+}
+
+// An output directory that cannot be made is named as such.
+TEST_F(CliTest, OutputDirectoryThatCannotBeMade) {
+  write_scene(kGoodScene);
+  const CliResult r = run_cli("run scene.yaml --backend cpu --steps 3 --out scene.yaml/sub");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("cannot create the output directory scene.yaml/sub"), std::string::npos) << r.err;
+  EXPECT_EQ(work_entries(), std::vector<std::string>{"scene.yaml"});
+}
+
 TEST_F(CliTest, BadExchangeOption) {
   expect_refused(kGoodScene, "--exchange", "--exchange nccl2");
   expect_refused(kGoodScene, "--exchange device needs --backend cuda", "--exchange device");
@@ -191,6 +212,13 @@ TEST_F(CliTest, VersionAndHelp) {
   EXPECT_NE(h.out.find("usage:"), std::string::npos);
   for (const char* option : {"--overwrite", "--restart", "--out", "--steps"})
     EXPECT_NE(h.out.find(option), std::string::npos) << option;
+  // A command's --help is the usage too, not a scene file called --help.
+  for (const char* args : {"-h", "help", "run --help", "run scene.yaml --steps 3 --help", "check -h", "info --help",
+                           "mixing --help"}) {
+    const CliResult c = run_cli(args);
+    EXPECT_EQ(c.exit_code, 0) << args << ": " << c.err;
+    EXPECT_EQ(c.out, h.out) << args;
+  }
   EXPECT_TRUE(work_entries().empty());
 }
 

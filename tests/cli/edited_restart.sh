@@ -7,7 +7,12 @@
 #     and the run log lists the edits;
 #  3. a moved wall that cuts into the particles is refused, naming the wall
 #     (the box's other walls, planes through the same places, are kept);
-#  4. contact_slots below a particle's contacts is refused, naming the key.
+#  4. contact_slots below a particle's contacts is refused, naming the key;
+#  5. an edit that changes the time step (a stiffer pair, a shorter contact
+#     time) is refused, naming the step to keep (the run's time is its step
+#     count times the step);
+#  6. --steps before the checkpoint's step is refused, and the output
+#     directory keeps what followed the checkpoint.
 # usage: edited_restart.sh GRAINSTORM MPIEXEC SCENE WORKDIR
 set -euo pipefail
 gs=$1 mpiexec=$2 scene=$3 work=$4
@@ -42,6 +47,9 @@ assert moved != text
 open("moved.yaml", "w").write(moved)
 narrow = text + "contact_slots: 2\n"
 open("narrow.yaml", "w").write(narrow)
+stiffer = text.replace("stiffness_normal: 1000,", "stiffness_normal: 4000,")
+assert stiffer != text
+open("stiffer.yaml", "w").write(stiffer)
 PY
 set +e; "$gs" run edited.yaml --backend cpu --restart "$checkpoint" --out plain > plain.log 2> plain.err; code=$?; set -e
 [[ $code != 0 ]] || fail "an edited scene was restarted without --edited-scene"
@@ -64,3 +72,13 @@ echo "edited restart (a wall added first, output edited): bitwise equal to the u
 refused moved "cuts .* m into particle" moved.yaml
 grep -q "wall 'box.zmin'" moved.err || fail "moved: the wall is not named: $(cat moved.err)"
 refused narrow "contact_slots" narrow.yaml
+
+# 5. and 6.
+refused stiffer "time_step: {absolute:" stiffer.yaml
+before=$(cd reference && ls -l --time-style=+%s . | md5sum)
+set +e; mpi 2 run scene.yaml --backend cpu --restart "$checkpoint" --steps 100 --out reference > early.log 2> early.err
+code=$?; set -e
+[[ $code != 0 ]] || fail "a restart with --steps before the checkpoint's step was accepted"
+grep -q "ends before the checkpoint's step 20000" early.err || fail "early: $(cat early.err)"
+[[ $(cd reference && ls -l --time-style=+%s . | md5sum) == "$before" ]] || fail "early: the output directory changed"
+echo "early end refused: $(grep -o "error: .*" early.err | head -c 240)"

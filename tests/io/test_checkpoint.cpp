@@ -243,6 +243,9 @@ TEST(Checkpoint, FileThatIsNotHdf5IsRefused) {
   { std::ofstream(path) << "step: 12\n"; }
   EXPECT_NE(refusal(path).find("not an HDF5 file"), std::string::npos) << refusal(path);
   EXPECT_NE(refusal(dir.file("absent.h5")).find("no such file"), std::string::npos);
+  std::filesystem::create_directory(dir.file("run"));
+  EXPECT_NE(refusal(dir.file("run")).find("a directory, not a checkpoint file"), std::string::npos)
+      << refusal(dir.file("run"));
 }
 
 TEST(Checkpoint, FlippedByteIsCaughtByTheChecksum) {
