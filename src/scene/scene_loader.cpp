@@ -249,6 +249,15 @@ void resolve_time_step(const Map& top, SceneSpec& s) {
                 " of the contact time) exceeds the stability limit " + str(limit.time_step) + " s (" +
                 str(limit.time_step / s.contact_time) + " of the contact time), set by the " + limit.binding +
                 " in a dense bed (docs/STABILITY.md)");
+  // A run's time is its step count times the time step: whole steps, exact
+  // in fp64 up to 2^53.
+  const double steps = s.duration / s.time_step;
+  if (!(steps <= 0x1p53))
+    fail(v, "time step " + str(s.time_step) + " s makes " + str(steps) + " steps of the duration " +
+                str(s.duration) + " s, more than 2^53");
+  if (std::llround(steps) < 1)
+    fail(v, "time step " + str(s.time_step) + " s is longer than twice the duration " + str(s.duration) +
+                " s: the run would make no step");
 }
 
 }  // namespace

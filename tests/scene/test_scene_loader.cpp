@@ -292,6 +292,14 @@ TEST(SceneLoaderErrors, TimeStepAboveStabilityLimit) {
   expect_error(edit("0.1}", "0.3}"), 17, "time_step", "stability limit");
 }
 
+// A run counts whole steps of the duration, its time their count times the
+// step: none, or more than fp64 counts exactly, is refused.
+TEST(SceneLoaderErrors, DurationOfNoStepOrTooManySteps) {
+  expect_error(edit("{fraction_of_contact_time: 0.1}", "{absolute: 1e-300}"), 17, "time_step", "more than 2^53");
+  expect_error(edit("duration: 0.5", "duration: 1e-9"), 17, "time_step", "the run would make no step");
+  EXPECT_NO_THROW(parse_scene(edit("{fraction_of_contact_time: 0.1}", "{absolute: 1e-5}"), "scene.yaml"));
+}
+
 TEST(SceneLoaderErrors, MissingPairNamesBothMaterials) {
   expect_error(edit("  - {materials: [steel, glass], stiffness_normal: 2000, restitution: 0.6}\n", ""), 7, "pairs",
                "[glass, steel]");
