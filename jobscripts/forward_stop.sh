@@ -1,7 +1,7 @@
 #!/bin/bash
-# Runs an mpirun/mpiexec command line and turns SIGTERM (and SIGUSR1) to this
-# script into SIGUSR1 to mpirun. Open MPI's mpirun forwards SIGUSR1 to every
-# rank at once, and grainstorm then writes a checkpoint and exits with code 3,
+# Runs an mpirun/mpiexec command line and turns SIGTERM (and SIGUSR1, SIGINT)
+# to this script into SIGUSR1 to mpirun. Open MPI's mpirun forwards SIGUSR1 to
+# every rank at once, and grainstorm then writes a checkpoint and exits with code 3,
 # which mpirun returns. A SIGTERM to mpirun itself instead makes it forward
 # SIGTERM only after odls_base_sigkill_timeout seconds (default 1), kill the
 # ranks after as many again, and exit with 1 whatever the ranks return.
@@ -20,10 +20,11 @@ stop() {
 }
 trap stop TERM USR1 INT
 # `wait` returns early (with 128 + signal) when a trapped signal arrives:
-# wait again until the command itself has ended.
-while true; do
+# wait again until the command itself has ended, then once more for its own
+# code (bash keeps the status of a child it has reaped; a command that ended
+# just as the signal came would otherwise leave 128 + signal).
+while kill -0 $pid 2>/dev/null; do
   wait $pid
-  code=$?
-  kill -0 $pid 2>/dev/null || break
 done
-exit $code
+wait $pid
+exit $?

@@ -4,7 +4,8 @@
 set -euo pipefail
 scene=${1:?usage: jobscripts/single_host.sh SCENE [grainstorm options]}
 shift
-gpus=$(nvidia-smi -L | wc -l)
+gpus=$(nvidia-smi -L 2>/dev/null | grep -c '^GPU ' || true)  # whole GPUs (not their MIG lines)
+((gpus > 0)) || { echo "single_host.sh: no GPU found by nvidia-smi -L" >&2; exit 1; }
 cores=$(nproc)
 export OMP_NUM_THREADS=$(( cores / gpus > 0 ? cores / gpus : 1 ))
 # SIGTERM or SIGUSR1 to this script reaches every rank at once as SIGUSR1

@@ -14,4 +14,6 @@ scene=${1:?usage: sbatch jobscripts/slurm_srun.sh SCENE [grainstorm options]}
 shift
 export OMP_NUM_THREADS=$SLURM_CPUS_PER_TASK
 # Each rank sees all GPUs of its node and binds to local rank mod GPUs itself.
-srun --cpu-bind=cores build/src/grainstorm run "$scene" --backend cuda "$@"
+# srun is given the cores per task again: since Slurm 22.05 it does not take
+# sbatch's --cpus-per-task, and each task would get one core for its threads.
+srun --cpus-per-task="$SLURM_CPUS_PER_TASK" --cpu-bind=cores build/src/grainstorm run "$scene" --backend cuda "$@"
