@@ -77,16 +77,26 @@ std::string file_text(const std::string& path) {
 // Ranks started with different scenes or options (an MPMD launch, a scene
 // file edited while the job started) would split different particles, or
 // enter different collectives: every rank must run what rank 0 runs.
-void expect_same_run_everywhere(Transport& transport, const RunRequest& a, std::uint64_t hash) {
-  const std::string mine = std::to_string(hash) + "\n" + std::to_string(a.steps) + "\n" + backend_name(a.backend) +
+void expect_same_run_everywhere(Transport& transport, const RunRequest& a, std::uint64_t hash,
+                                const SceneSpec& scene) {
+  // The meshes as read, walls' and flow surfaces' (the scene text names
+  // their files, which each rank reads: a node-local copy may differ).
+  Fnv1a64 read;
+  read.add_array(scene.meshes.reference);
+  read.add_array(scene.meshes.corners);
+  for (const FlowSpec& f : scene.measurements.flows) {
+    read.add_array(f.surface.vertices);
+    read.add_array(f.surface.triangles);
+  }
+  const std::string mine = std::to_string(hash) + "\n" + hex64(read.value()) + "\n" + std::to_string(a.steps) + "\n" + backend_name(a.backend) +
                            "\n" + a.exchange + "\n" + a.out + "\n" + (a.overwrite ? "overwrite" : "") + "\n" +
                            (a.restart.empty() ? "new" : "restart") + (a.edited_scene ? " edited" : "");
   const Bytes first = transport.broadcast(Bytes(mine.begin(), mine.end()), 0);
   std::string error;
   if (std::string(first.begin(), first.end()) != mine)
     error = "runs " + a.scene +
-            " (scene hash, --steps, --backend, --exchange, --out, --overwrite, --restart or --edited-scene) "
-            "differently from rank 0: every rank must run the same scene with the same options";
+            " (scene hash, meshes read, --steps, --backend, --exchange, --out, --overwrite, --restart or "
+            "--edited-scene) differently from rank 0: every rank must run the same scene with the same options";
   throw_if_any_failed(transport, error);
 }
 
@@ -404,7 +414,7 @@ int run_scene(const RunRequest& request, Transport& transport) {
     hash = scene_hash(text);
   });
   const SceneSpec& scene = *loaded;
-  expect_same_run_everywhere(transport, a, hash);
+  expect_same_run_everywhere(transport, a, hash, scene);
   if (transport.rank() == 0) print_warnings(scene);
   const std::string directory = a.out.empty() ? scene.output.directory : a.out;
   // Only rank 0 writes, so only its view of the directory counts.

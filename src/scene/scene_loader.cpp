@@ -5,6 +5,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <sys/stat.h>
+
 #include "scene/scene_time_step.hpp"
 #include "contact/contact_models.hpp"
 #include "io/snapshot_fields.hpp"
@@ -286,6 +288,10 @@ SceneSpec parse_scene(const std::string& yaml_text, const std::string& source, P
 }
 
 SceneSpec load_scene(const std::string& path, PackingChecks checks) {
+  // A directory opens, and then reads as an empty scene.
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+    throw SceneError(path + ":1: scene: a directory, not a scene file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ":1: scene: cannot open the scene file");
   std::ostringstream text;

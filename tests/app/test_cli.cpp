@@ -189,6 +189,17 @@ TEST_F(CliTest, BadStepsAndRepeatedOptions) {
   expect_refused(kGoodScene, "option --steps needs a value", "--steps ''");
 }
 
+// A directory given as the scene is named as such (it used to read as an
+// empty scene: "expected a map").
+TEST_F(CliTest, DirectoryForAScene) {
+  fs::create_directory(work_ / "scenes");
+  for (const char* command : {"check scenes", "run scenes --backend cpu"}) {
+    const CliResult r = run_cli(command);
+    EXPECT_NE(r.exit_code, 0) << command;
+    EXPECT_NE(r.err.find("scenes:1: scene: a directory, not a scene file"), std::string::npos) << r.err;
+  }
+}
+
 // An output directory that cannot be made is named as such.
 TEST_F(CliTest, OutputDirectoryThatCannotBeMade) {
   write_scene(kGoodScene);

@@ -3,7 +3,8 @@
 # MPMD launches with different arguments per rank) stops every rank within
 # seconds with one message that names the rank and the cause, and a non-zero
 # exit; before the run starts, nothing is written. Phases: the scene (missing
-# on rank 1, on rank 0), the options (another scene on rank 1), the restart
+# on rank 1, on rank 0), the options (another scene, another --out, or a
+# mesh file of other contents on rank 1), the restart
 # checkpoint (missing on rank 1), the first step (a fault: logged in run.log,
 # with the state written to fault_<step>.h5), and an output written mid-run
 # (a snapshot rank 0 cannot write).
@@ -49,6 +50,17 @@ expect_nothing_written scene0
 sed 's/duration: 0.4/duration: 0.3/' s.yaml > other.yaml
 expect_stopped options "rank 1: runs other.yaml" s.yaml --out options :: other.yaml --out options
 expect_nothing_written options
+expect_stopped outs "rank 1: runs s.yaml" s.yaml --out outs :: s.yaml --out outs2
+expect_nothing_written outs
+# The same scene text whose mesh file differs on rank 1 (a node-local copy):
+# a flow surface one vertex of which moved by 0.1 mm.
+mkdir -p mesh0 mesh1
+cp "$(dirname "$scene")/measure_small.yaml" mesh0/m.yaml && cp "$(dirname "$scene")/flow_tent.stl" mesh0/
+cp mesh0/m.yaml mesh1/m.yaml
+awk '/vertex/ && !done { $2 += 1e-4; done = 1 } { print }' mesh0/flow_tent.stl > mesh1/flow_tent.stl
+! cmp -s mesh0/flow_tent.stl mesh1/flow_tent.stl || fail "mesh: the STL copies are the same"
+expect_stopped meshes "meshes read" mesh0/m.yaml --out meshes :: mesh1/m.yaml --out meshes
+expect_nothing_written meshes
 
 "$mpiexec" --oversubscribe --allow-run-as-root -np 2 "$gs" run s.yaml --backend cpu --steps $quarter --out first \
   > first.log
