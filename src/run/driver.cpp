@@ -88,9 +88,10 @@ void expect_same_run_everywhere(Transport& transport, const RunRequest& a, std::
     read.add_array(f.surface.vertices);
     read.add_array(f.surface.triangles);
   }
-  const std::string mine = std::to_string(hash) + "\n" + hex64(read.value()) + "\n" + std::to_string(a.steps) + "\n" + backend_name(a.backend) +
-                           "\n" + a.exchange + "\n" + a.out + "\n" + (a.overwrite ? "overwrite" : "") + "\n" +
-                           (a.restart.empty() ? "new" : "restart") + (a.edited_scene ? " edited" : "");
+  const std::string mine = std::to_string(hash) + "\n" + hex64(read.value()) + "\n" + std::to_string(a.steps) +
+                           "\n" + backend_name(a.backend) + "\n" + a.exchange + "\n" + a.out + "\n" +
+                           (a.overwrite ? "overwrite" : "") + "\n" + (a.restart.empty() ? "new" : "restart") +
+                           (a.edited_scene ? " edited" : "");
   const Bytes first = transport.broadcast(Bytes(mine.begin(), mine.end()), 0);
   std::string error;
   if (std::string(first.begin(), first.end()) != mine)
