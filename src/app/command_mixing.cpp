@@ -40,11 +40,7 @@ int command_mixing(const std::vector<std::string>& args) {
       if (k + 1 >= args.size()) throw std::invalid_argument(args[k] + " needs a value; " + usage);
       if (args[k] == "--out") out = args[++k];
       else {
-        const std::string v = args[++k];
-        std::size_t used = 0;
-        try { layers = std::stoi(v, &used); } catch (const std::exception&) { used = 0; }
-        if (used != v.size() || layers < 1 || layers > 1000)
-          throw std::invalid_argument("--layers must be an integer in [1, 1000], got '" + v + "'");
+        layers = int(whole_number(args[++k], 1, 1000, "--layers must be an integer in [1, 1000]"));
       }
     } else if (args[k].rfind("--", 0) == 0) {
       throw std::invalid_argument("unknown option " + args[k] + "; " + usage);

@@ -12,6 +12,18 @@
 
 namespace gs {
 
+long long whole_number(const std::string& text, long long lo, long long hi, const std::string& rule) {
+  std::size_t used = 0;
+  long long n = 0;
+  try {
+    n = std::stoll(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || n < lo || n > hi) throw std::invalid_argument(rule + ", got '" + text + "'");
+  return n;
+}
+
 int command_check(const std::vector<std::string>& args) {
   if (args.size() != 2) throw std::invalid_argument("usage: grainstorm check SCENE");
   const SceneSpec scene = load_scene(args[1]);

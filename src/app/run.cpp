@@ -1,5 +1,6 @@
 // `grainstorm run`: one rank, or one rank per GPU (or CPU) under mpirun. The
 // run itself is the library's (run/driver.hpp); this parses the command line.
+#include <limits>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -12,20 +13,6 @@
 
 namespace gs {
 namespace {
-
-// --steps N: the step to end at, a whole number >= 0 (all of the text).
-long long parse_steps(const std::string& v) {
-  std::size_t used = 0;
-  long long n = -1;
-  try {
-    n = std::stoll(v, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != v.size() || n < 0)
-    throw std::invalid_argument("--steps must be a whole number >= 0 (the step to end at), got '" + v + "'");
-  return n;
-}
 
 RunRequest parse_run_args(const std::vector<std::string>& args) {
   RunRequest r;
@@ -40,7 +27,9 @@ RunRequest parse_run_args(const std::vector<std::string>& args) {
       return args[++k];
     };
     if (a == "--backend") r.backend = parse_backend(value());
-    else if (a == "--steps") r.steps = parse_steps(value());
+    else if (a == "--steps")
+      r.steps = whole_number(value(), 0, std::numeric_limits<long long>::max(),
+                             "--steps must be a whole number >= 0 (the step to end at)");
     else if (a == "--out") r.out = value();
     else if (a == "--restart") r.restart = value();
     else if (a == "--overwrite") r.overwrite = true;

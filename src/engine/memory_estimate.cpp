@@ -121,7 +121,7 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
   // phase allocates. The old list's references and, without history, its
   // entries (and the CPU's reverse entries) are freed first, and the forces,
   // whose values a build inside a step has spent
-  // (Simulation::rebuild_neighbours_without_forces). With history the old
+  // (Simulation::rebuild_neighbours). With history the old
   // list's entries and springs become the carried table and each particle
   // gets an origin row; each particle's touching contacts are kept from it
   // (the kept contacts and their offsets) before the sort, and the carried

@@ -28,7 +28,7 @@ struct MemoryEstimate {
   // between rebuilds, per particle: the largest of its phases
   // (engine/neighbour_finder.hpp), with history the kept contacts', less
   // the forces and torques, whose storage a build does without
-  // (Simulation::rebuild_neighbours_without_forces).
+  // (Simulation::rebuild_neighbours).
   double build_bytes = 0;
   // What an output (snapshot or checkpoint) holds beside the run, per
   // particle (engine/particle_mover_output.hpp): where the ids stay dense

@@ -57,7 +57,7 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
   setup_timings_.particles = seconds_since(t0);
   // Forces at t = 0 for the first half kick.
   const auto t1 = Clock::now();
-  rebuild_neighbours_without_forces();
+  rebuild_neighbours();
   kernels_->forces().compute(store_, 0.0, 0);
   kernels_->synchronize();
   setup_timings_.first_forces = seconds_since(t1);
@@ -71,7 +71,7 @@ Simulation::Simulation(const SceneSpec& scene, const RunOptions& options, std::s
   std::vector<Vec3d> force, torque;  // the owned particles' last forces, in store order
   restore(restart, force, torque);
   if (exchange_) exchange_->refresh_ghosts(store_, kernels_->movement());
-  rebuild_neighbours_without_forces();
+  rebuild_neighbours();
   kernels_->movement().set_forces(store_, force, torque);
 }
 
@@ -229,29 +229,25 @@ std::vector<MeshLoad> Simulation::mesh_loads() const {
   return total;
 }
 
-void Simulation::rebuild_neighbours() {
-  kernels_->neighbours().build(store_, grid_, skin_);
-  kernels_->forces().build_surface_lists(store_, skin_);
-  mesh_drift_.built(meshes_);
-  if (watch_walls_) wall_drift_.built(walls_);
-}
-
-// A build while no force on the backend is needed: in a step after its
-// kick-drift has read the last forces and before its force pass writes every
-// owned particle's anew; at the start before the first force pass, or, on a
-// restart, while the saved forces wait on the host. The force arrays'
-// storage goes back to the backend while the build's transients are held
-// (with a contact history the kept contacts beside the list's tables: a
+// Every build comes where no force on the backend is needed: in a step after
+// its kick-drift has read the last forces and before its force pass writes
+// every owned particle's anew; at the start before the first force pass, or,
+// on a restart, while the saved forces wait on the host. So the force
+// arrays' storage goes back to the backend while the build's transients are
+// held (with a contact history the kept contacts beside the list's tables: a
 // frictional run's peak), 24 bytes per particle in fp32.
-void Simulation::rebuild_neighbours_without_forces() {
+void Simulation::rebuild_neighbours() {
   kernels_->movement().release_forces();
   try {
-    rebuild_neighbours();
+    kernels_->neighbours().build(store_, grid_, skin_);
+    kernels_->forces().build_surface_lists(store_, skin_);
   } catch (...) {  // sized again, so that what reads them after the error reads no freed storage
     kernels_->movement().reserve(store_.size());
     throw;
   }
   kernels_->movement().reserve(store_.size());
+  mesh_drift_.built(meshes_);
+  if (watch_walls_) wall_drift_.built(walls_);
 }
 
 // The meshes' and walls' motion since the lists were built, against the half
@@ -308,7 +304,7 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
     if (kernels_->neighbours().stale(store_) || surfaces_drifted()) {
       finish_forward();  // (a list built on the ghosts' last positions would be wrong)
       if (!exchange_) reorder_if_due();
-      rebuild_neighbours_without_forces();
+      rebuild_neighbours();
       ++neighbour_builds_;
     }
     timings_.neighbours += phase_seconds(t0);

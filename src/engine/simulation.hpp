@@ -120,8 +120,7 @@ class Simulation {
   void restore(const RestartState& restart, std::vector<Vec3d>& force, std::vector<Vec3d>& torque);
   void move_walls(double t);
   void pose_meshes(double t);
-  void rebuild_neighbours();
-  void rebuild_neighbours_without_forces();  // where no force's value is needed on the backend
+  void rebuild_neighbours();  // where no force's value is needed on the backend: without the force arrays
   // A build of the lists is due for the meshes' or the walls' motion.
   bool surfaces_drifted() const;
   void insert_due();
