@@ -2,9 +2,10 @@
 // bytes per particle. The bed is a cubic lattice pressed 0.5 % into overlap
 // under gravity in a box, so every particle starts with about six contacts.
 // The box leaves room (a spacing at two side walls, 2 r above the top), so the
-// overlaps push the lattice apart: 5.7 contacts per sphere at step 20, 4.1 at
-// step 70, under one from step 220 on (counted in both codes of the
-// LIGGGHTS comparison, bench/liggghts/README.md). Short runs (--steps 50)
+// overlaps push the lattice apart: at the default step, 5.9 contacts per
+// sphere at step 20, 5.5 at step 70, 3.2 at step 220, 1.6 at step 420
+// (--n 100000; at the 0.2 contact times stepped until 2026-12-07, 5.7 at
+// step 20, 4.1 at 70 and under one from 220 on). Short runs (--steps 50)
 // time the dense bed, long ones mostly a loose, moving one; the output line
 // ends with the contacts per particle (walls included) after the timed steps
 // (-1 without friction, which keeps no contact history, or with --contacts no), then the Verlet
@@ -16,6 +17,9 @@
 //                                     --n 63701 or more: smaller lattices can lie wholly in
 //                                     the cylinder the impeller sweeps, 99 mm across, 104 mm tall)
 //                [--skin S]          (Verlet list skin in largest diameters, default 0.1)
+//                [--step F]          (time step as a fraction of the contact time, default 0.1;
+//                                     refused above the stability limit, 0.116 with friction,
+//                                     as the scene loader refuses it: docs/STABILITY.md)
 //                [--contacts no]     (skip the count of contacts at the end, a host copy of the
 //                                     whole state: the largest beds, whose host memory it would pass)
 //                [--digest yes]      (then print the final state's digest: the same for any build
@@ -50,6 +54,9 @@ struct Options {
   bool digest = false;  // print the final state's digest (io/state_digest.hpp) after the timing
   bool contacts = true;  // count the contacts per particle at the end (a host snapshot)
   double skin = gs::kDefaultVerletSkin;  // Verlet list skin, largest diameters
+  // Time step in contact times: the cases' 0.1-0.11, within the loader's
+  // limit (until 2026-12-07 the bench stepped at 0.2, beyond it).
+  double step = 0.1;
   gs::RunOptions run{gs::default_backend()};  // backend
 };
 
@@ -83,9 +90,16 @@ Options parse(int argc, char** argv) {
     else if (a == "--digest") o.digest = v == "yes";
     else if (a == "--contacts") o.contacts = v != "no";
     else if (a == "--skin") o.skin = std::stod(v);
+    else if (a == "--step") o.step = std::stod(v);
     else throw std::invalid_argument("unknown option " + a);
   }
   return o;
+}
+
+std::string fraction(double f) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", f);
+  return text;
 }
 
 gs::Wall box_side(gs::Vec3d point, gs::Vec3d normal) {
@@ -152,7 +166,16 @@ gs::SceneSpec bed_scene(const Options& o) {
     throw std::invalid_argument("--mesh impeller: every sphere of --n " + std::to_string(o.n) +
                                 " lies in the cylinder the impeller sweeps (63701 or more leave some outside)");
   s.contact_time = gs::critical_contact_time(s);
-  s.time_step = 0.2 * s.contact_time;
+  // The loader's rule (scene/scene_loader.cpp): no step a scene file could
+  // not ask for.
+  const gs::StableStep limit = gs::stable_time_step(s);
+  s.time_step = o.step * s.contact_time;
+  if (!(s.time_step > 0 && s.time_step <= limit.time_step))
+    throw std::invalid_argument("--step " + fraction(o.step) + " must be positive and at most the stability limit, " +
+                                fraction(limit.time_step / s.contact_time) + " of the contact time (set by the " +
+                                limit.binding + ")");
+  s.stable_time_step = limit.time_step;
+  s.stable_step_binding = limit.binding;
   s.duration = s.time_step * double(o.steps);
   s.verlet_skin = o.skin;
   return s;
@@ -188,13 +211,13 @@ int main(int argc, char** argv) {
       for (std::uint16_t c : end.contacts) contacts += c;
       contacts /= n;
     }
-    std::printf("backend=%s n=%zu mesh=%s precision=%s effects=%u model=%s steps=%lld wall_s=%.3f "
+    std::printf("backend=%s n=%zu mesh=%s precision=%s effects=%u model=%s steps=%lld step_fraction=%g time_step_s=%.6g wall_s=%.3f "
                 "particle_steps_per_s=%.4g peak_bytes_per_particle=%.1f held_bytes_per_particle=%.1f "
                 "integrate_s=%.3f neighbours_s=%.3f forces_s=%.3f contacts_per_particle_at_end=%.2f list_builds=%lld "
                 "reserved_bytes_per_particle=%.1f\n",
                 gs::backend_name(o.run.backend), scene.particles.size(), o.mesh ? "impeller" : "none",
                 gs::precision_name(o.precision), o.effects, o.model == gs::ContactModel::linear ? "linear" : "hertz",
-                o.steps, wall, rate, bytes, double(sim.device_bytes()) / n, t.integrate, t.neighbours, t.forces,
+                o.steps, o.step, scene.time_step, wall, rate, bytes, double(sim.device_bytes()) / n, t.integrate, t.neighbours, t.forces,
                 contacts, sim.neighbour_builds(), double(gs::backend_reserved_peak_bytes(o.run.backend)) / n);
     if (o.digest) std::printf("state_digest=0x%016" PRIx64 "\n", gs::state_digest(sim.snapshot(), sim.history()));
     return 0;

@@ -13,6 +13,8 @@
 # Environment:
 #   GS_SETTLE_BENCH  grainstorm's settle_bench binary (default build/bench/settle_bench)
 #   GS_PRECISION     fp32 (settle_bench's default) or fp64 (LIGGGHTS computes in fp64)
+#   GS_STEP          time step in grainstorm's contact times (settle_bench --step, default 0.1);
+#                    LIGGGHTS steps the same seconds (settle_bench's time_step_s)
 #   LIGGGHTS         LIGGGHTS binary (default: liggghts, from `apt-get install liggghts`)
 #
 # Prints one line per run (with the load average before it) and the best and
@@ -27,10 +29,16 @@ here=$(cd "$(dirname "$0")" && pwd)
 repo=$(cd "$here/../.." && pwd)
 gs=${GS_SETTLE_BENCH:-$repo/build/bench/settle_bench}
 precision=${GS_PRECISION:-fp32}
+step=${GS_STEP:-0.1}
 lig=${LIGGGHTS:-liggghts}
 
 command -v "$lig" >/dev/null || { echo "run.sh: $lig not found (apt-get install -y liggghts)" >&2; exit 1; }
 [ -x "$gs" ] || { echo "run.sh: $gs not found or not executable (build settle_bench, or set GS_SETTLE_BENCH)" >&2; exit 1; }
+
+# The step in seconds, from a run of no timed step (settle_bench refuses one
+# beyond its stability limit).
+dt=$("$gs" --backend cpu --n 1000 --steps 0 --contacts no --step "$step" | sed -nE 's/.*time_step_s=([^ ]+).*/\1/p')
+[ -n "$dt" ] || { echo "run.sh: settle_bench gave no time step for --step $step" >&2; exit 1; }
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -41,7 +49,7 @@ run_liggghts() {
   local log=$work/liggghts.log
   local cmd=("$lig")
   [ "$NP" -gt 1 ] && cmd=(mpirun --allow-run-as-root -np "$NP" "$lig")
-  (cd "$work" && "${cmd[@]}" -in "$here/settle_bed.in" -var N "$N" -var STEPS "$STEPS" -log none) > "$log" 2>&1 ||
+  (cd "$work" && "${cmd[@]}" -in "$here/settle_bed.in" -var N "$N" -var STEPS "$STEPS" -var DT "$dt" -log none) > "$log" 2>&1 ||
     { cat "$log" >&2; return 1; }
   # The second "Loop time" line is the timed run (the first is the warm-up).
   local loop
@@ -57,12 +65,12 @@ run_liggghts() {
 # One grainstorm run; prints "rate wall_s".
 run_grainstorm() {
   local out
-  out=$("$gs" --backend cpu --n "$N" --steps "$STEPS" --effects friction --precision "$precision")
+  out=$("$gs" --backend cpu --n "$N" --steps "$STEPS" --effects friction --precision "$precision" --step "$step")
   echo "$out" | sed -E 's/.*particle_steps_per_s=([^ ]+).*/\1/' | tr '\n' ' '
   echo "$out" | sed -E 's/.*(wall_s=[^ ]+).*/\1/'
 }
 
-echo "N=$N steps=$STEPS (after 20 warm-up) repeats=$REPEATS liggghts_np=$NP grainstorm=$gs precision=$precision"
+echo "N=$N steps=$STEPS (after 20 warm-up) dt=$dt s ($step contact times) repeats=$REPEATS liggghts_np=$NP grainstorm=$gs precision=$precision"
 (cd "$work" && "$lig" -h -log none 2>/dev/null | grep '^LIGGGHTS' | head -n 1) || true
 : > "$work/lig.rates"
 : > "$work/gs.rates"
