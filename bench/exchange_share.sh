@@ -6,8 +6,9 @@
 # commit before, built beside it from
 # `mkdir -p carry/base && git archive <commit> | tar -x -C carry/base`).
 # Prints per build the phases' seconds per step from the run log
-# ("time per phase", whose sum is the run's time per step: the phases are
-# measured on every 128th step and scaled to the run's time), the exchange's
+# ("time per phase", whose sum is the run's time per step: a halo or list
+# rebuild is timed each time, the rest of each phase on every 128th step and
+# scaled to the rest of the run's time), the exchange's
 # share of the step, and the halo's rebuilds; the logs stay in OUT. A timed
 # step waits for the device between its phases, so the exchange's figure is
 # what the exchange costs where nothing hides it; what the overlap with the

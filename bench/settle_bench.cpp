@@ -9,7 +9,8 @@
 // time the dense bed, long ones mostly a loose, moving one; the output line
 // ends with the contacts per particle (walls included) after the timed steps
 // (-1 without friction, which keeps no contact history, or with --contacts no), then the Verlet
-// list's builds in the warm-up and the timed steps.
+// list's builds in the warm-up and the timed steps. integrate_s, neighbours_s and forces_s
+// split the warm-up's and the timed steps' time (Simulation::timings: every list build timed).
 //
 //   settle_bench [--n N] [--steps S] [--backend cpu|cuda] [--precision fp32|fp64|fp32_full]
 //                [--effects none|friction|rolling|cohesion] [--model linear|hertz]

@@ -301,13 +301,16 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
     // other's: a rebuild of the halo changed the store, and so the list is
     // rebuilt after it. Memory is re-sorted only at a rebuild.
     t0 = Clock::now();
-    if (kernels_->neighbours().stale(store_) || surfaces_drifted()) {
+    const bool build = kernels_->neighbours().stale(store_) || surfaces_drifted();
+    timings_.neighbours += phase_seconds(t0);
+    if (build) {
       finish_forward();  // (a list built on the ghosts' last positions would be wrong)
-      if (!exchange_) reorder_if_due();
-      rebuild_neighbours();
+      time_rare(rare_timings_.neighbours, [this] {
+        if (!exchange_) reorder_if_due();
+        rebuild_neighbours();
+      });
       ++neighbour_builds_;
     }
-    timings_.neighbours += phase_seconds(t0);
 
     compute_forces(dt, p.step);
     closing_kick_due_ = true;
@@ -323,10 +326,20 @@ void Simulation::run(long long steps, const std::function<bool()>& stop_after_st
 }
 
 StepTimings Simulation::timings() const {
+  const StepTimings& r = rare_timings_;
+  const double rare = r.integrate + r.neighbours + r.forces + r.exchange;
   const double sampled = timings_.integrate + timings_.neighbours + timings_.forces + timings_.exchange;
-  if (!(sampled > 0)) return timings_;
-  const double scale = run_seconds_ / sampled;
-  return {timings_.integrate * scale, timings_.neighbours * scale, timings_.forces * scale, timings_.exchange * scale};
+  const double scale = sampled > 0 ? std::max(0.0, run_seconds_ - rare) / sampled : 0.0;
+  return {r.integrate + timings_.integrate * scale, r.neighbours + timings_.neighbours * scale,
+          r.forces + timings_.forces * scale, r.exchange + timings_.exchange * scale};
+}
+
+void Simulation::time_rare(double& total, const std::function<void()>& work) {
+  kernels_->synchronize();
+  const auto t0 = Clock::now();
+  work();
+  kernels_->synchronize();
+  total += seconds_since(t0);
 }
 
 // Kernels run asynchronously on a GPU: a phase ends when its kernels have.
@@ -357,15 +370,13 @@ void Simulation::exchange_particles() {
     timings_.exchange += phase_seconds(t0);
     return;
   }
+  timings_.exchange += phase_seconds(t0);  // the vote
   rebuild_due_ = false;
-  if (!(balance && exchange_->rebalance(store_, kernels_->movement()))) exchange_->migrate(store_, kernels_->movement());
-  timings_.exchange += phase_seconds(t0);
-  t0 = Clock::now();
-  reorder_if_due();
-  timings_.neighbours += phase_seconds(t0);
-  t0 = Clock::now();
-  exchange_->refresh_ghosts(store_, kernels_->movement());
-  timings_.exchange += phase_seconds(t0);
+  time_rare(rare_timings_.exchange, [this, balance] {
+    if (!(balance && exchange_->rebalance(store_, kernels_->movement()))) exchange_->migrate(store_, kernels_->movement());
+  });
+  time_rare(rare_timings_.neighbours, [this] { reorder_if_due(); });
+  time_rare(rare_timings_.exchange, [this] { exchange_->refresh_ghosts(store_, kernels_->movement()); });
 }
 
 // The step's forces. While the ghosts' forward is in flight, the interior

@@ -97,8 +97,10 @@ class Simulation {
   ParticleRecords wall_contact_history() const;
   void wall_contact_history_into(ParticleRecords& r, HostPins& pins) const;  // as snapshot_into
   std::size_t device_bytes() const;
-  // Wall time in run() per phase: the total is measured, its split over the
-  // phases is that of the timed steps (every kTimedEvery-th, see phase_seconds).
+  // Wall time in run() per phase: the total is measured; the rare work (a
+  // list build, the halo's rebuild, a re-sort) is timed each time it runs,
+  // and what is left is split over the phases as the timed steps split it
+  // (every kTimedEvery-th, see phase_seconds).
   StepTimings timings() const;
   // Builds of the neighbour structure in run() so far (a Verlet list's
   // rebuilds; every step without one).
@@ -136,6 +138,10 @@ class Simulation {
   void finish_closing_kick();
   void reorder_if_due();
   double phase_seconds(std::chrono::steady_clock::time_point start) const;
+  // Runs `work`, rare and waiting for the device anyway, between two waits
+  // for the device, and adds its wall time to `total`: every time, so that
+  // a list build or a halo rebuild counts whether or not a timed step has one.
+  void time_rare(double& total, const std::function<void()>& work);
   // Steps between timed ones: each waits for the device five times.
   static constexpr long long kTimedEvery = 128;
 
@@ -167,7 +173,8 @@ class Simulation {
   long long contact_measure_step_ = -1;  // the step of the next contact pass; -1: none
   long long measured_step_ = -1;         // the step of the last one
   double contact_pass_seconds_ = 0;
-  StepTimings timings_;  // sampled: the timed steps' phases
+  StepTimings timings_;  // sampled: the timed steps' phases, less their rare work
+  StepTimings rare_timings_;  // measured: every rare work's (time_rare)
   double run_seconds_ = 0;  // all of run(), measured
   SetupTimings setup_timings_;
   bool removes_ = false;  // the scene has exits (outlets or open faces)
