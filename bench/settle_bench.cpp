@@ -212,13 +212,15 @@ int main(int argc, char** argv) {
       for (std::uint16_t c : end.contacts) contacts += c;
       contacts /= n;
     }
-    std::printf("backend=%s n=%zu mesh=%s precision=%s effects=%u model=%s steps=%lld step_fraction=%g time_step_s=%.6g wall_s=%.3f "
+    std::printf("backend=%s n=%zu mesh=%s precision=%s effects=%u model=%s steps=%lld step_fraction=%g "
+                "time_step_s=%.6g wall_s=%.3f "
                 "particle_steps_per_s=%.4g peak_bytes_per_particle=%.1f held_bytes_per_particle=%.1f "
                 "integrate_s=%.3f neighbours_s=%.3f forces_s=%.3f contacts_per_particle_at_end=%.2f list_builds=%lld "
                 "reserved_bytes_per_particle=%.1f\n",
                 gs::backend_name(o.run.backend), scene.particles.size(), o.mesh ? "impeller" : "none",
                 gs::precision_name(o.precision), o.effects, o.model == gs::ContactModel::linear ? "linear" : "hertz",
-                o.steps, o.step, scene.time_step, wall, rate, bytes, double(sim.device_bytes()) / n, t.integrate, t.neighbours, t.forces,
+                o.steps, o.step, scene.time_step, wall, rate, bytes, double(sim.device_bytes()) / n, t.integrate,
+                t.neighbours, t.forces,
                 contacts, sim.neighbour_builds(), double(gs::backend_reserved_peak_bytes(o.run.backend)) / n);
     if (o.digest) std::printf("state_digest=0x%016" PRIx64 "\n", gs::state_digest(sim.snapshot(), sim.history()));
     return 0;

@@ -373,7 +373,8 @@ void Simulation::exchange_particles() {
   timings_.exchange += phase_seconds(t0);  // the vote
   rebuild_due_ = false;
   time_rare(rare_timings_.exchange, [this, balance] {
-    if (!(balance && exchange_->rebalance(store_, kernels_->movement()))) exchange_->migrate(store_, kernels_->movement());
+    ParticleMovement& movement = kernels_->movement();
+    if (!(balance && exchange_->rebalance(store_, movement))) exchange_->migrate(store_, movement);
   });
   time_rare(rare_timings_.neighbours, [this] { reorder_if_due(); });
   time_rare(rare_timings_.exchange, [this] { exchange_->refresh_ghosts(store_, kernels_->movement()); });
