@@ -97,12 +97,6 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-std::string fraction(double f) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", f);
-  return text;
-}
-
 gs::Wall box_side(gs::Vec3d point, gs::Vec3d normal) {
   gs::Wall w;
   w.kind = gs::WallKind::plane;
@@ -167,16 +161,10 @@ gs::SceneSpec bed_scene(const Options& o) {
     throw std::invalid_argument("--mesh impeller: every sphere of --n " + std::to_string(o.n) +
                                 " lies in the cylinder the impeller sweeps (63701 or more leave some outside)");
   s.contact_time = gs::critical_contact_time(s);
-  // The loader's rule (scene/scene_loader.cpp): no step a scene file could
-  // not ask for.
-  const gs::StableStep limit = gs::stable_time_step(s);
+  // The loader's rule: no step a scene file could not ask for.
   s.time_step = o.step * s.contact_time;
-  if (!(s.time_step > 0 && s.time_step <= limit.time_step))
-    throw std::invalid_argument("--step " + fraction(o.step) + " must be positive and at most the stability limit, " +
-                                fraction(limit.time_step / s.contact_time) + " of the contact time (set by the " +
-                                limit.binding + ")");
-  s.stable_time_step = limit.time_step;
-  s.stable_step_binding = limit.binding;
+  if (const std::string problem = gs::time_step_problem(s); !problem.empty())
+    throw std::invalid_argument("--step: " + problem);
   s.duration = s.time_step * double(o.steps);
   s.verlet_skin = o.skin;
   return s;

@@ -241,16 +241,9 @@ void resolve_time_step(const Map& top, SceneSpec& s) {
   const Map m(v, {"absolute", "fraction_of_contact_time"});
   const std::string kind = m.one_of({"absolute", "fraction_of_contact_time"});
   s.contact_time = critical_contact_time(s);
-  const StableStep limit = stable_time_step(s);
-  s.stable_time_step = limit.time_step;
-  s.stable_step_binding = limit.binding;
   s.time_step = positive(m.get(kind));
   if (kind == "fraction_of_contact_time") s.time_step *= s.contact_time;
-  if (!(s.time_step <= limit.time_step))
-    fail(v, "time step " + str(s.time_step) + " s (" + str(s.time_step / s.contact_time) +
-                " of the contact time) exceeds the stability limit " + str(limit.time_step) + " s (" +
-                str(limit.time_step / s.contact_time) + " of the contact time), set by the " + limit.binding +
-                " in a dense bed (docs/STABILITY.md)");
+  if (const std::string problem = time_step_problem(s); !problem.empty()) fail(v, problem);
   // A run's time is its step count times the time step: whole steps, exact
   // in fp64 up to 2^53.
   const double steps = s.duration / s.time_step;
