@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <limits>
-#include <sstream>
 
+#include "scene/number_text.hpp"
 #include "scene/particle_sources.hpp"
 
 namespace gs {
@@ -22,25 +22,15 @@ double critical_contact_time(const SceneSpec& scene) { return critical_contact_t
 
 StableStep stable_time_step(const SceneSpec& scene) { return stable_time_step(contact_scene(scene)); }
 
-namespace {
-// Six digits, as the loader's messages print numbers.
-std::string str(double x) {
-  std::ostringstream text;
-  text.precision(6);
-  text << x;
-  return text.str();
-}
-}  // namespace
-
 std::string time_step_problem(SceneSpec& s) {
   const StableStep limit = stable_time_step(s);
   s.stable_time_step = limit.time_step;
   s.stable_step_binding = limit.binding;
-  if (!(s.time_step > 0)) return "time step " + str(s.time_step) + " s must be positive";
+  if (!(s.time_step > 0)) return "time step " + number_text(s.time_step) + " s must be positive";
   if (s.time_step <= limit.time_step) return "";
-  return "time step " + str(s.time_step) + " s (" + str(s.time_step / s.contact_time) +
-         " of the contact time) exceeds the stability limit " + str(limit.time_step) + " s (" +
-         str(limit.time_step / s.contact_time) + " of the contact time), set by the " + limit.binding +
+  return "time step " + number_text(s.time_step) + " s (" + number_text(s.time_step / s.contact_time) +
+         " of the contact time) exceeds the stability limit " + number_text(limit.time_step) + " s (" +
+         number_text(limit.time_step / s.contact_time) + " of the contact time), set by the " + limit.binding +
          " in a dense bed (docs/STABILITY.md)";
 }
 
